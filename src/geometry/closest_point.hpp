@@ -1,0 +1,24 @@
+#pragma once
+/// Exact closest point on one triangle, with the Voronoi region it falls in (Ericson,
+/// Real-Time Collision Detection §5.1.5). Used by every point-to-surface query (paper §2.2.1).
+#include <cstdint>
+
+#include "mesh/mesh.hpp"
+
+namespace sm {
+
+/// Where on the triangle (a, b, c) the closest point lies.
+enum class TriangleRegion : uint8_t { Face, Edge01, Edge12, Edge20, Vertex0, Vertex1, Vertex2 };
+
+struct TrianglePoint {
+  Vec3 point;            ///< the closest point
+  Vec3 bary;             ///< its barycentric coordinates (u, v, w), u·a + v·b + w·c = point, sum 1
+  TriangleRegion region;
+  double dist2;          ///< squared distance from the query
+};
+
+/// Closest point of triangle (a, b, c) to p. Degenerate triangles (collinear or coincident
+/// corners) are handled: the answer is then the closest point on their edges.
+TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace sm

@@ -1,0 +1,22 @@
+#pragma once
+/// The paper's fast closest-point update (§2.2.1): starting from the triangle of the previous
+/// correspondence, walk over adjacent triangles while that brings the query closer.
+#include "geometry/bvh.hpp"
+#include "mesh/topology.hpp"
+
+namespace sm {
+
+/// Local closest-point search on `mesh` (positions V, triangles F, connectivity topo) for the
+/// query p, starting at triangle `start` (must be valid). At each step the closest point on the
+/// current triangle decides where to look next: inside the face, the walk stops; on an edge, the
+/// neighbour across it is tried; at a corner, every triangle around that vertex is tried. The walk
+/// moves to the best candidate while it is strictly closer and stops after `max_steps` moves.
+///
+/// Returns true and the local minimum in `out` when the walk settled; false when it ran out of
+/// steps — the caller must then use the exact query (TriangleBvh::closest). An edge without a
+/// neighbour (boundary or non-manifold) is treated like its two corners: every triangle around
+/// both endpoints is tried. Thread-safe, allocation-free.
+bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, const Vec3& p,
+                  int start, int max_steps, SurfacePoint& out);
+
+}  // namespace sm
