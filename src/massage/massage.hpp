@@ -1,0 +1,110 @@
+#pragma once
+/// The Mesh Massage optimizer (paper §2): moves the vertices of M so that its triangles take the
+/// shapes of a template T (eq. 1, 6) while it stays close to a reference surface N (eq. 4), by
+/// iterating the combined solve (eq. 7) with Lawson's reweighting (eq. 5).
+///
+/// Per iteration k, with M's positions v (n×3):
+///   K = μA + (1−μ)B,  K v = (1−μ)c                                          (eq. 7)
+///   A = I − Λ (n×n, not symmetric, fixed)                                    (eq. 6)
+///   B = Σ_i α_i e_i e_iᵀ + Σ_j β_j b_j b_jᵀ,  c = Σ_i α_i v̂_i + Σ_j β_j b_j w_j  (eq. 4)
+/// where v̂_i is the closest point of N to v_i, and b_j (n-vector, three non-zeros) holds the
+/// barycentric coordinates of the closest point of M to the sample w_j. The sparsity of K is A's
+/// (with its diagonal) for every iteration, frame and reference: it is analysed once.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/weights.hpp"
+#include "massage/reference.hpp"
+#include "mesh/topology.hpp"
+
+namespace sm {
+
+enum class SolverKind {
+  Iterative,  ///< BiCGSTAB with an ILU(0) preconditioner on the fixed pattern, warm-started
+  Direct,     ///< sparse LU, refactored every iteration (robust, slower)
+};
+
+enum class ClosestPointMode {
+  Local,  ///< walk from the previous correspondence (§2.2.1), exact BVH query as fall-back
+  Exact,  ///< exact BVH query for every point in every iteration
+};
+
+/// Every tunable of the optimizer; the JSON config's "massage" object maps onto it one-to-one
+/// (key names in quotes).
+struct MassageOptions {
+  WeightKind weights = WeightKind::MeanValue;  ///< "weights": "mean_value" | "uniform"
+  int iterations = 15;                         ///< "iterations": outer iterations, >= 1
+  std::optional<double> mu;                    ///< "mu": "auto" (empty) or a value in [0, 1)
+  SampleKind samples = SampleKind::Vertices;   ///< "samples": samples w_j of N
+  /// "tolerance": stop early when no vertex moved more than this times M's mean edge length.
+  double tolerance = 1e-4;
+  bool lawson = true;          ///< "lawson": update α, β by eq. 5 after each iteration
+  double lawson_floor = 1e-8;  ///< "lawson_floor": α, β kept >= this times their mean
+  SolverKind solver = SolverKind::Iterative;   ///< "solver": "iterative" | "direct"
+  double solver_tolerance = 1e-10;             ///< "solver_tolerance": relative residual
+  int solver_max_iterations = 300;             ///< "solver_max_iterations"
+  ClosestPointMode closest_points = ClosestPointMode::Local;  ///< "closest_points"
+  int walk_max_steps = 16;     ///< "walk_max_steps": local search moves before the exact query
+  bool pin_boundary = false;   ///< "pin_boundary": boundary vertices of M keep their position
+  std::vector<int> pinned;     ///< "pinned": vertex indices of M that keep their position
+};
+
+/// What one outer iteration did (all distances in model units).
+struct IterationStats {
+  int iteration = 0;
+  double mu = 0.0;
+  double energy = 0.0;           ///< μ‖Av‖² + (1−μ)·(weighted distance energy, eq. 4), after solve
+  double max_dist_m_to_n = 0.0;  ///< max_i |v_i − v̂_i| (after the solve)
+  double rms_dist_m_to_n = 0.0;
+  double max_dist_n_to_m = 0.0;  ///< max_j |w_j − ŵ_j|
+  double rms_dist_n_to_m = 0.0;
+  double max_move = 0.0;         ///< largest vertex displacement of this iteration
+  int solver_iterations = 0;
+  double solver_residual = 0.0;  ///< relative residual reached
+  int exact_queries = 0;         ///< closest-point queries that needed the exact (BVH) search
+  double seconds_closest = 0.0;  ///< closest points both ways, BVH refit
+  double seconds_assemble = 0.0; ///< B, c, K, preconditioner or factorization
+  double seconds_solve = 0.0;
+};
+
+struct MassageResult {
+  Positions V;                        ///< optimized positions of M (n×3)
+  std::vector<IterationStats> iterations;
+  bool ok = true;                     ///< false: numerical failure, see `failure`; V is then the start
+  std::string failure;                ///< why the run failed (solver breakdown, NaN, ...)
+  bool stopped_early = false;         ///< the movement tolerance was met before the last iteration
+  int folded_triangles = 0;           ///< triangles whose normal opposes N's at their centroid
+  double seconds = 0.0;
+};
+
+/// Everything that depends only on the template T and the connectivity of M: the weights, A,
+/// the fixed sparsity pattern of K and its symbolic analysis, M's topology. Build once, then call
+/// run() for any number of (start, reference) pairs, from any number of threads at once.
+class Massager {
+ public:
+  /// Throws InputError (naming `name`) if T is invalid: bad indices, non-finite coordinates,
+  /// degenerate or non-manifold triangles; ConfigError for out-of-range options.
+  Massager(const TriMesh& templ, MassageOptions options, const char* name = "template");
+  ~Massager();
+  Massager(Massager&&) noexcept;
+  Massager& operator=(Massager&&) noexcept;
+
+  /// Optimizes M, starting at `start` (n×3, the template's connectivity), against `reference`.
+  /// Numerical failures are reported in the result (ok = false), never thrown.
+  MassageResult run(const Positions& start, const Reference& reference) const;
+
+  const MassageOptions& options() const;
+  const Topology& topology() const;
+  std::shared_ptr<const Topology> shared_topology() const;
+  const ShapeWeights& weights() const;
+  const Triangles& triangles() const;
+  int num_vertices() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sm
