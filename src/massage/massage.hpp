@@ -84,8 +84,9 @@ struct MassageResult {
 /// run() for any number of (start, reference) pairs, from any number of threads at once.
 class Massager {
  public:
-  /// Throws InputError (naming `name`) if T is invalid: bad indices, non-finite coordinates,
-  /// degenerate or non-manifold triangles; ConfigError for out-of-range options.
+  /// Throws InputError (naming `name`) if T has out-of-range indices, non-finite coordinates or
+  /// no triangle; ConfigError for out-of-range options. Degenerate template corners fall back to
+  /// uniform weights (weights().fallback_vertices counts them).
   Massager(const TriMesh& templ, MassageOptions options, const char* name = "template");
   ~Massager();
   Massager(Massager&&) noexcept;

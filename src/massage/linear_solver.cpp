@@ -1,0 +1,229 @@
+#include "massage/linear_solver.hpp"
+
+#include <Eigen/SparseLU>
+#include <array>
+#include <cmath>
+
+namespace sm {
+
+void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y) {
+  const int n = static_cast<int>(K.rows());
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  const double* val = K.valuePtr();
+  const double* x = X.data();
+  Y.resize(n, 3);
+  double* y = Y.data();
+  for (int i = 0; i < n; ++i) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+    for (int p = outer[i]; p < outer[i + 1]; ++p) {
+      const double v = val[p];
+      const double* xj = x + 3 * inner[p];
+      s0 += v * xj[0];
+      s1 += v * xj[1];
+      s2 += v * xj[2];
+    }
+    y[3 * i] = s0;
+    y[3 * i + 1] = s1;
+    y[3 * i + 2] = s2;
+  }
+}
+
+bool Ilu0::factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots) {
+  K_ = &K;
+  diag_ = &diagonal_slots;
+  const int n = static_cast<int>(K.rows());
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  lu_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  marker_.assign(n, -1);
+  for (int i = 0; i < n; ++i) {
+    for (int p = outer[i]; p < outer[i + 1]; ++p) marker_[inner[p]] = p;
+    for (int p = outer[i]; p < outer[i + 1] && inner[p] < i; ++p) {
+      const int j = inner[p];
+      const double pivot = lu_[diagonal_slots[j]];
+      lu_[p] /= pivot;
+      const double l = lu_[p];
+      if (l == 0.0) continue;
+      for (int q = diagonal_slots[j] + 1; q < outer[j + 1]; ++q) {
+        const int slot = marker_[inner[q]];
+        if (slot >= 0) lu_[slot] -= l * lu_[q];
+      }
+    }
+    for (int p = outer[i]; p < outer[i + 1]; ++p) marker_[inner[p]] = -1;
+    const double d = lu_[diagonal_slots[i]];
+    if (!(std::abs(d) > 0.0) || !std::isfinite(d)) return false;
+  }
+  return true;
+}
+
+void Ilu0::apply(const Positions& R, Positions& Z) const {
+  const SparseMatrixR& K = *K_;
+  const std::vector<int>& diag = *diag_;
+  const int n = static_cast<int>(K.rows());
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  Z.resize(n, 3);
+  double* z = Z.data();
+  const double* r = R.data();
+  // Forward: L has a unit diagonal and the entries left of it.
+  for (int i = 0; i < n; ++i) {
+    double s0 = r[3 * i], s1 = r[3 * i + 1], s2 = r[3 * i + 2];
+    for (int p = outer[i]; p < diag[i]; ++p) {
+      const double l = lu_[p];
+      const double* zj = z + 3 * inner[p];
+      s0 -= l * zj[0];
+      s1 -= l * zj[1];
+      s2 -= l * zj[2];
+    }
+    z[3 * i] = s0;
+    z[3 * i + 1] = s1;
+    z[3 * i + 2] = s2;
+  }
+  // Backward: U holds the diagonal and the entries right of it.
+  for (int i = n - 1; i >= 0; --i) {
+    double s0 = z[3 * i], s1 = z[3 * i + 1], s2 = z[3 * i + 2];
+    for (int p = diag[i] + 1; p < outer[i + 1]; ++p) {
+      const double u = lu_[p];
+      const double* zj = z + 3 * inner[p];
+      s0 -= u * zj[0];
+      s1 -= u * zj[1];
+      s2 -= u * zj[2];
+    }
+    const double inv = 1.0 / lu_[diag[i]];
+    z[3 * i] = s0 * inv;
+    z[3 * i + 1] = s1 * inv;
+    z[3 * i + 2] = s2 * inv;
+  }
+}
+
+namespace {
+
+using Col3 = Eigen::Array<double, 1, 3>;
+
+Col3 column_dots(const Positions& a, const Positions& b) {
+  return (a.array() * b.array()).colwise().sum();
+}
+
+}  // namespace
+
+SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, Positions& X,
+                    double tolerance, int max_iterations) {
+  SolveStats st;
+  const int n = static_cast<int>(K.rows());
+  Positions r(n, 3), rhat(n, 3), p = Positions::Zero(n, 3), v = Positions::Zero(n, 3), y(n, 3),
+      s(n, 3), z(n, 3), t(n, 3);
+  multiply(K, X, r);
+  r = R - r;
+  rhat = r;
+  const Col3 rhs_norm = column_dots(R, R).sqrt();
+  Col3 target;
+  for (int c = 0; c < 3; ++c) target[c] = tolerance * (rhs_norm[c] > 0.0 ? rhs_norm[c] : 1.0);
+  Col3 rho = Col3::Ones(), alpha = Col3::Ones(), omega = Col3::Ones();
+  Col3 res = column_dots(r, r).sqrt();
+  std::array<bool, 3> done{};
+  auto all_done = [&] {
+    for (int c = 0; c < 3; ++c) done[c] = done[c] || res[c] <= target[c];
+    return done[0] && done[1] && done[2];
+  };
+  auto finish = [&](bool ok, const char* why) {
+    st.ok = ok;
+    st.message = why;
+    for (int c = 0; c < 3; ++c) st.residual = std::max(st.residual, res[c] / (target[c] / tolerance));
+    return st;
+  };
+  if (all_done()) return finish(true, "");
+  for (st.iterations = 1; st.iterations <= max_iterations; ++st.iterations) {
+    const Col3 rho_new = column_dots(rhat, r);
+    Col3 beta;
+    for (int c = 0; c < 3; ++c) {
+      if (done[c]) {
+        beta[c] = 0.0;
+        continue;
+      }
+      if (rho_new[c] == 0.0 || omega[c] == 0.0) return finish(false, "BiCGSTAB breakdown (rho or omega is 0)");
+      beta[c] = (rho_new[c] / rho[c]) * (alpha[c] / omega[c]);
+    }
+    rho = rho_new;
+    for (int c = 0; c < 3; ++c)
+      if (!done[c]) p.col(c) = r.col(c) + beta[c] * (p.col(c) - omega[c] * v.col(c));
+    M.apply(p, y);
+    multiply(K, y, v);
+    const Col3 rv = column_dots(rhat, v);
+    for (int c = 0; c < 3; ++c) {
+      if (done[c]) continue;
+      if (rv[c] == 0.0) return finish(false, "BiCGSTAB breakdown (r̂·v is 0)");
+      alpha[c] = rho[c] / rv[c];
+      s.col(c) = r.col(c) - alpha[c] * v.col(c);
+      X.col(c) += alpha[c] * y.col(c);
+    }
+    const Col3 s_norm = column_dots(s, s).sqrt();
+    bool need_second = false;
+    for (int c = 0; c < 3; ++c) {
+      if (done[c]) continue;
+      if (s_norm[c] <= target[c]) {
+        r.col(c) = s.col(c);
+        res[c] = s_norm[c];
+      } else {
+        need_second = true;
+      }
+    }
+    if (need_second) {
+      M.apply(s, z);
+      multiply(K, z, t);
+      const Col3 ts = column_dots(t, s), tt = column_dots(t, t);
+      for (int c = 0; c < 3; ++c) {
+        if (done[c] || s_norm[c] <= target[c]) continue;
+        omega[c] = tt[c] > 0.0 ? ts[c] / tt[c] : 0.0;
+        X.col(c) += omega[c] * z.col(c);
+        r.col(c) = s.col(c) - omega[c] * t.col(c);
+      }
+      const Col3 rn = column_dots(r, r).sqrt();
+      for (int c = 0; c < 3; ++c)
+        if (!done[c] && s_norm[c] > target[c]) res[c] = rn[c];
+    }
+    if (!res.isFinite().all()) return finish(false, "BiCGSTAB produced a non-finite residual");
+    if (all_done()) return finish(true, "");
+  }
+  st.iterations = max_iterations;
+  return finish(false, "BiCGSTAB did not reach the tolerance");
+}
+
+struct DirectSolver::Impl {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  bool analysed = false;
+};
+
+DirectSolver::DirectSolver() : impl_(std::make_unique<Impl>()) {}
+DirectSolver::~DirectSolver() = default;
+
+SolveStats DirectSolver::solve(const SparseMatrixR& K, const Positions& R, Positions& X) {
+  SolveStats st;
+  const Eigen::SparseMatrix<double> Kc = K;
+  if (!impl_->analysed) {
+    impl_->lu.analyzePattern(Kc);
+    impl_->analysed = true;
+  }
+  impl_->lu.factorize(Kc);
+  if (impl_->lu.info() != Eigen::Success) {
+    st.message = "sparse LU factorization failed: " + impl_->lu.lastErrorMessage();
+    return st;
+  }
+  const Eigen::MatrixXd Rc = R;
+  const Eigen::MatrixXd Xc = impl_->lu.solve(Rc);
+  if (impl_->lu.info() != Eigen::Success || !Xc.allFinite()) {
+    st.message = "sparse LU solve failed";
+    return st;
+  }
+  X = Xc;
+  Positions KX;
+  multiply(K, X, KX);
+  const Eigen::Array<double, 1, 3> rn = (R - KX).colwise().norm().array();
+  const Eigen::Array<double, 1, 3> bn = R.colwise().norm().array();
+  for (int c = 0; c < 3; ++c) st.residual = std::max(st.residual, rn[c] / (bn[c] > 0 ? bn[c] : 1.0));
+  st.ok = true;
+  st.iterations = 1;
+  return st;
+}
+
+}  // namespace sm

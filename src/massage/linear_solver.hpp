@@ -1,0 +1,58 @@
+#pragma once
+/// Solvers for K X = R with X, R n×3 (x, y, z share K, paper eq. 7) on a fixed sparsity pattern:
+/// ILU(0)-preconditioned BiCGSTAB on all three columns at once (one pass over K per product),
+/// warm-started from the current positions, and a sparse LU fall-back.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/weights.hpp"
+#include "mesh/mesh.hpp"
+
+namespace sm {
+
+struct SolveStats {
+  bool ok = false;
+  int iterations = 0;
+  double residual = 0.0;  ///< max over the columns of ‖R − K X‖ / ‖R‖
+  std::string message;    ///< why it failed, when !ok
+};
+
+/// Y = K X for n×3 X, one pass over K.
+void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y);
+
+/// Incomplete LU factorization with zero fill-in on K's own pattern (K must have sorted columns
+/// and an explicit diagonal). The structure is K's; factor() only recomputes the values.
+class Ilu0 {
+ public:
+  /// Computes the factors of K's current values. Returns false on a zero pivot.
+  bool factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots);
+  /// Z = (LU)⁻¹ R, n×3.
+  void apply(const Positions& R, Positions& Z) const;
+
+ private:
+  const SparseMatrixR* K_ = nullptr;
+  const std::vector<int>* diag_ = nullptr;
+  std::vector<double> lu_;
+  std::vector<int> marker_;
+};
+
+/// Preconditioned BiCGSTAB (van der Vorst) on the three columns together, each column with its
+/// own scalars and stopping test ‖R − K X‖ <= tolerance · ‖R‖. X holds the initial guess.
+SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Positions& R,
+                    Positions& X, double tolerance, int max_iterations);
+
+/// Sparse LU of K (Eigen's SparseLU, COLAMD ordering). The ordering is computed on the first
+/// call and reused while the pattern is the same; each call refactors numerically.
+class DirectSolver {
+ public:
+  DirectSolver();
+  ~DirectSolver();
+  SolveStats solve(const SparseMatrixR& K, const Positions& R, Positions& X);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sm

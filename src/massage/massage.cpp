@@ -1,0 +1,235 @@
+#include "massage/massage.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "massage/correspondence.hpp"
+#include "massage/linear_solver.hpp"
+#include "massage/system.hpp"
+#include "mesh/errors.hpp"
+
+namespace sm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void check_options(const MassageOptions& o, int n) {
+  auto bad = [](const std::string& key, const std::string& why) {
+    throw ConfigError("massage." + key + ": " + why);
+  };
+  if (o.iterations < 1) bad("iterations", "must be >= 1");
+  if (o.mu && !(*o.mu >= 0.0 && *o.mu < 1.0)) bad("mu", "must be \"auto\" or in [0, 1)");
+  if (!(o.tolerance >= 0.0)) bad("tolerance", "must be >= 0");
+  if (!(o.lawson_floor > 0.0 && o.lawson_floor < 1.0)) bad("lawson_floor", "must be in (0, 1)");
+  if (!(o.solver_tolerance > 0.0 && o.solver_tolerance < 1.0))
+    bad("solver_tolerance", "must be in (0, 1)");
+  if (o.solver_max_iterations < 1) bad("solver_max_iterations", "must be >= 1");
+  if (o.walk_max_steps < 0) bad("walk_max_steps", "must be >= 0");
+  for (int v : o.pinned)
+    if (v < 0 || v >= n)
+      bad("pinned", "vertex " + std::to_string(v) + " is out of range (the mesh has " +
+                        std::to_string(n) + " vertices)");
+}
+
+// Lawson's update (eq. 5) for α and β together, then normalisation by the joint mean and a floor
+// relative to it, so the weights neither underflow nor overflow and B stays definite.
+void lawson_update(Eigen::VectorXd& alpha, const Eigen::VectorXd& d_alpha, Eigen::VectorXd& beta,
+                   const Eigen::VectorXd& d_beta, double floor) {
+  alpha = alpha.cwiseProduct(d_alpha);
+  beta = beta.cwiseProduct(d_beta);
+  const double total = alpha.sum() + beta.sum();
+  const double count = static_cast<double>(alpha.size() + beta.size());
+  if (!(total > 0.0) || !std::isfinite(total)) {
+    alpha.setOnes();
+    beta.setOnes();
+    return;
+  }
+  const double mean = total / count;
+  alpha = (alpha / mean).cwiseMax(floor);
+  beta = (beta / mean).cwiseMax(floor);
+}
+
+}  // namespace
+
+struct Massager::Impl {
+  MassageOptions options;
+  Triangles F;
+  std::shared_ptr<const Topology> topology;
+  ShapeWeights weights;
+  SystemPattern pattern;
+  std::vector<unsigned char> pinned;  // n flags
+  int num_pinned = 0;
+  double template_mean_edge = 0.0;
+};
+
+Massager::Massager(const TriMesh& templ, MassageOptions options, const char* name)
+    : impl_(std::make_unique<Impl>()) {
+  validate_mesh(templ, name);
+  if (templ.num_triangles() == 0) throw InputError(std::string(name) + ": the mesh has no triangles");
+  const int n = templ.num_vertices();
+  check_options(options, n);
+  Impl& s = *impl_;
+  s.options = std::move(options);
+  s.F = templ.F;
+  s.topology = std::make_shared<const Topology>(build_topology(templ));
+  s.weights = compute_weights(templ, s.options.weights);
+  s.pattern = SystemPattern(shape_matrix(s.weights), templ.F);
+  s.pinned.assign(n, 0);
+  for (int v : s.options.pinned) s.pinned[v] = 1;
+  if (s.options.pin_boundary)
+    for (int v = 0; v < n; ++v)
+      if (s.topology->is_boundary_vertex[v]) s.pinned[v] = 1;
+  for (unsigned char p : s.pinned) s.num_pinned += p;
+  s.template_mean_edge = mean_edge_length(templ);
+}
+
+Massager::~Massager() = default;
+Massager::Massager(Massager&&) noexcept = default;
+Massager& Massager::operator=(Massager&&) noexcept = default;
+
+const MassageOptions& Massager::options() const { return impl_->options; }
+const Topology& Massager::topology() const { return *impl_->topology; }
+std::shared_ptr<const Topology> Massager::shared_topology() const { return impl_->topology; }
+const ShapeWeights& Massager::weights() const { return impl_->weights; }
+const Triangles& Massager::triangles() const { return impl_->F; }
+int Massager::num_vertices() const { return impl_->pattern.size(); }
+
+MassageResult Massager::run(const Positions& start, const Reference& reference) const {
+  const Impl& s = *impl_;
+  const MassageOptions& o = s.options;
+  const auto t_run = Clock::now();
+  const int n = s.pattern.size();
+  MassageResult result;
+  result.V = start;
+  if (start.rows() != n) {
+    std::ostringstream msg;
+    msg << "the start positions have " << start.rows() << " vertices, the template " << n;
+    throw InputError(msg.str());
+  }
+  if (!start.allFinite()) {
+    result.ok = false;
+    result.failure = "the start positions contain NaN or infinite coordinates";
+    return result;
+  }
+
+  // Per-run state: M's positions and BVH, correspondences both ways, Lawson weights.
+  TriMesh M{start, s.F};
+  TriangleBvh bvh_m(M);
+  const TriMesh& N = reference.mesh();
+  const Positions& W = reference.samples();
+  const SurfaceView on_n{&N.V, &N.F, &reference.topology(), &reference.bvh()};
+  const SurfaceView on_m{&M.V, &M.F, s.topology.get(), &bvh_m};
+  std::vector<SurfacePoint> v_hat, w_hat;  // v̂_i on N, ŵ_j on M
+  const bool exact = o.closest_points == ClosestPointMode::Exact;
+  update_correspondences(on_n, M.V, true, o.walk_max_steps, v_hat);
+  update_correspondences(on_m, W, true, o.walk_max_steps, w_hat);
+  Eigen::VectorXd alpha = Eigen::VectorXd::Ones(n), beta = Eigen::VectorXd::Ones(W.rows());
+  Eigen::VectorXd d_alpha(n), d_beta(W.rows());
+
+  const double move_limit = o.tolerance * (s.template_mean_edge > 0.0 ? mean_edge_length(M) : 0.0);
+  SparseMatrixR K = s.pattern.shape_matrix();  // values overwritten every iteration
+  const std::vector<double> A_values(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  std::vector<double> B_values;
+  Positions c, rhs, X, AV;
+  Ilu0 ilu;
+  DirectSolver direct;
+
+  for (int k = 1; k <= o.iterations; ++k) {
+    IterationStats it;
+    it.iteration = k;
+    auto t0 = Clock::now();
+    assemble_distance_system(s.pattern, s.F, v_hat, alpha, W, w_hat, beta, B_values, c);
+    double b_norm2 = 0.0;
+    for (double b : B_values) b_norm2 += b * b;
+    const double mu = o.mu ? *o.mu : std::sqrt(b_norm2) / (3.0 * s.pattern.shape_norm() + std::sqrt(b_norm2));
+    it.mu = mu;
+    double* kv = K.valuePtr();
+    for (size_t p = 0; p < B_values.size(); ++p) kv[p] = mu * A_values[p] + (1.0 - mu) * B_values[p];
+    rhs = (1.0 - mu) * c;
+    if (s.num_pinned > 0) {
+      const int* outer = K.outerIndexPtr();
+      for (int i = 0; i < n; ++i) {
+        if (!s.pinned[i]) continue;
+        for (int p = outer[i]; p < outer[i + 1]; ++p) kv[p] = 0.0;
+        kv[s.pattern.diagonal_slot(i)] = 1.0;
+        rhs.row(i) = start.row(i);
+      }
+    }
+    SolveStats solve;
+    bool use_direct = o.solver == SolverKind::Direct;
+    if (!use_direct && !ilu.factor(K, s.pattern.diagonal_slots())) use_direct = true;
+    it.seconds_assemble = seconds_since(t0);
+
+    t0 = Clock::now();
+    X = M.V;  // warm start from the current positions
+    if (!use_direct) {
+      solve = bicgstab(K, ilu, rhs, X, o.solver_tolerance, o.solver_max_iterations);
+      if (!solve.ok) {
+        X = M.V;
+        use_direct = true;  // the robust path for this iteration
+      }
+    }
+    if (use_direct) {
+      const int iterative_steps = solve.iterations;
+      solve = direct.solve(K, rhs, X);
+      solve.iterations += iterative_steps;
+    }
+    it.seconds_solve = seconds_since(t0);
+    it.solver_iterations = solve.iterations;
+    it.solver_residual = solve.residual;
+    if (!solve.ok || !X.allFinite()) {
+      result.ok = false;
+      result.failure = "iteration " + std::to_string(k) + ": " +
+                       (solve.ok ? std::string("the solution contains NaN") : solve.message);
+      result.V = start;
+      result.iterations.push_back(it);
+      result.seconds = seconds_since(t_run);
+      return result;
+    }
+    it.max_move = (X - M.V).rowwise().norm().maxCoeff();
+    M.V = X;
+
+    t0 = Clock::now();
+    bvh_m.refit(M.V);
+    it.exact_queries = update_correspondences(on_n, M.V, exact, o.walk_max_steps, v_hat);
+    it.exact_queries += update_correspondences(on_m, W, exact, o.walk_max_steps, w_hat);
+    it.seconds_closest = seconds_since(t0);
+
+    for (int i = 0; i < n; ++i) d_alpha[i] = std::sqrt(v_hat[i].dist2);
+    for (int j = 0; j < d_beta.size(); ++j) d_beta[j] = std::sqrt(w_hat[j].dist2);
+    multiply(s.pattern.shape_matrix(), M.V, AV);
+    it.energy = mu * AV.squaredNorm() +
+                (1.0 - mu) * (alpha.dot(d_alpha.cwiseAbs2()) + beta.dot(d_beta.cwiseAbs2()));
+    it.max_dist_m_to_n = d_alpha.maxCoeff();
+    it.rms_dist_m_to_n = std::sqrt(d_alpha.squaredNorm() / n);
+    it.max_dist_n_to_m = d_beta.size() ? d_beta.maxCoeff() : 0.0;
+    it.rms_dist_n_to_m = d_beta.size() ? std::sqrt(d_beta.squaredNorm() / d_beta.size()) : 0.0;
+    result.iterations.push_back(it);
+
+    if (o.lawson) lawson_update(alpha, d_alpha, beta, d_beta, o.lawson_floor);
+    if (k < o.iterations && it.max_move <= move_limit) {
+      result.stopped_early = true;
+      break;
+    }
+  }
+
+  // Fold-over check: a triangle of M whose normal opposes the normal of N where its corners land.
+  const Positions nm = triangle_normals(M);
+  const Positions nn = triangle_normals(N);
+  for (int t = 0; t < M.num_triangles(); ++t) {
+    Vec3 ref = Vec3::Zero();
+    for (int a = 0; a < 3; ++a) ref += nn.row(v_hat[M.F(t, a)].triangle).transpose();
+    if (nm.row(t).dot(ref) < 0.0) ++result.folded_triangles;
+  }
+  result.V = M.V;
+  result.seconds = seconds_since(t_run);
+  return result;
+}
+
+}  // namespace sm

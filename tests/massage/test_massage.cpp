@@ -1,0 +1,162 @@
+#include <catch2/catch.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include "geometry/shear.hpp"
+#include "massage/massage.hpp"
+#include "mesh/primitives.hpp"
+#include "support/drift.hpp"
+
+using namespace sm;
+
+namespace {
+
+// Distance of every vertex to the cylinder of radius R around the axis (0, t, R).
+double max_distance_to_cylinder(const Positions& V, double R) {
+  double d = 0.0;
+  for (int i = 0; i < V.rows(); ++i)
+    d = std::max(d, std::abs(std::hypot(V(i, 0), V(i, 2) - R) - R));
+  return d;
+}
+
+// Distance to the torus-arc tube of test::bent_tube (centre-line circle of radius Rb around
+// (-Rb, 0, 0) in the xz plane, tube radius r).
+double max_distance_to_bent_tube(const Positions& V, double Rb, double r) {
+  double d = 0.0;
+  for (int i = 0; i < V.rows(); ++i) {
+    const double rho = std::hypot(V(i, 0) + Rb, V(i, 2));
+    d = std::max(d, std::abs(std::hypot(rho - Rb, V(i, 1)) - r));
+  }
+  return d;
+}
+
+MassageResult massage(const test::Scenario& s, MassageOptions o = {}) {
+  const Massager m(s.templ, o);
+  const Reference ref(s.drifted, o.samples, "reference", m.shared_topology());
+  MassageResult r = m.run(s.drifted.V, ref);
+  REQUIRE(r.ok);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("drift recovery on an isometric deformation (grid rolled onto a cylinder)",
+          "[massage][acceptance]") {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const double R = 12.0;
+    const test::Scenario s = test::rolled_grid(40, 24, R, 0.35, seed);
+    const double h = mean_edge_length(s.templ);
+    const Eigen::VectorXd before = shear_distortion(s.templ.V, s.drifted.V, s.templ.F);
+    const MassageResult r = massage(s);
+    const Eigen::VectorXd after = shear_distortion(s.templ.V, r.V, s.templ.F);
+    INFO("seed " << seed << ": max shear " << before.maxCoeff() << " -> " << after.maxCoeff()
+                 << ", mean " << before.mean() << " -> " << after.mean());
+    CHECK(after.maxCoeff() <= 0.1 * before.maxCoeff());
+    CHECK(max_distance_to_cylinder(r.V, R) <= 0.05 * h);
+    CHECK(r.folded_triangles == 0);
+  }
+}
+
+TEST_CASE("drift reduction on a stretching deformation (bending tube)", "[massage][acceptance]") {
+  for (unsigned seed : {4u, 5u}) {
+    const double r = 1.0, L = 8.0, Rb = 4.0;
+    const test::Scenario s = test::bent_tube(32, 40, r, L, Rb, 0.35, seed);
+    const double h = mean_edge_length(s.templ);
+    const Eigen::VectorXd before = shear_distortion(s.templ.V, s.drifted.V, s.templ.F);
+    const MassageResult res = massage(s);
+    const Eigen::VectorXd after = shear_distortion(s.templ.V, res.V, s.templ.F);
+    INFO("seed " << seed << ": max shear " << before.maxCoeff() << " -> " << after.maxCoeff()
+                 << ", mean " << before.mean() << " -> " << after.mean());
+    CHECK(after.maxCoeff() <= 0.7 * before.maxCoeff());
+    CHECK(after.mean() <= before.mean());
+    CHECK(max_distance_to_bent_tube(res.V, Rb, r) <= 0.05 * h);
+  }
+}
+
+TEST_CASE("the iterative and the direct solver give the same result", "[massage]") {
+  const test::Scenario s = test::rolled_grid(20, 12, 8.0, 0.3, 9);
+  MassageOptions direct;
+  direct.solver = SolverKind::Direct;
+  const MassageResult a = massage(s), b = massage(s, direct);
+  CHECK((a.V - b.V).cwiseAbs().maxCoeff() < 1e-6 * mean_edge_length(s.templ));
+}
+
+TEST_CASE("pinned vertices do not move", "[massage]") {
+  const test::Scenario s = test::rolled_grid(16, 10, 6.0, 0.3, 11);
+  MassageOptions o;
+  o.pin_boundary = true;
+  o.pinned = {100, 101};
+  const Massager m(s.templ, o);
+  const Reference ref(s.drifted, o.samples);
+  const MassageResult r = m.run(s.drifted.V, ref);
+  REQUIRE(r.ok);
+  const Topology& t = m.topology();
+  int moved_free = 0;
+  for (int i = 0; i < r.V.rows(); ++i) {
+    if (t.is_boundary_vertex[i] || i == 100 || i == 101)
+      CHECK(r.V.row(i) == s.drifted.V.row(i));
+    else if (r.V.row(i) != s.drifted.V.row(i))
+      ++moved_free;
+  }
+  CHECK(moved_free > 0);
+}
+
+TEST_CASE("a Massager is reusable and thread-safe, and results are deterministic", "[massage]") {
+  const test::Scenario s = test::rolled_grid(20, 14, 9.0, 0.3, 13);
+  const Massager m(s.templ, MassageOptions{});
+  const Reference ref(s.drifted, SampleKind::Vertices, "reference", m.shared_topology());
+  const MassageResult serial = m.run(s.drifted.V, ref);
+  std::vector<Positions> out(8);
+  tbb::parallel_for(0, 8, [&](int k) { out[k] = m.run(s.drifted.V, ref).V; });
+  for (const Positions& V : out) CHECK(V == serial.V);  // bitwise equal
+}
+
+TEST_CASE("iteration statistics are reported and the energy is finite", "[massage]") {
+  const test::Scenario s = test::rolled_grid(12, 8, 6.0, 0.3, 17);
+  MassageOptions o;
+  o.iterations = 5;
+  o.tolerance = 0.0;
+  const MassageResult r = massage(s, o);
+  REQUIRE(r.iterations.size() == 5);
+  for (const IterationStats& it : r.iterations) {
+    CHECK(std::isfinite(it.energy));
+    CHECK(it.mu > 0.0);
+    CHECK(it.mu < 1.0);
+    CHECK(it.max_dist_m_to_n >= it.rms_dist_m_to_n);
+    CHECK(it.seconds_solve >= 0.0);
+  }
+  CHECK_FALSE(r.stopped_early);
+}
+
+TEST_CASE("extra samples on edges and faces are accepted", "[massage]") {
+  const test::Scenario s = test::rolled_grid(12, 8, 6.0, 0.3, 19);
+  for (SampleKind k : {SampleKind::Edges, SampleKind::Faces}) {
+    MassageOptions o;
+    o.samples = k;
+    const MassageResult r = massage(s, o);
+    CHECK(r.V.allFinite());
+  }
+}
+
+TEST_CASE("invalid options and inputs are rejected with the key or the mesh named", "[massage]") {
+  const TriMesh g = make_grid(3, 3, 1.0, 1.0);
+  MassageOptions o;
+  o.iterations = 0;
+  CHECK_THROWS_WITH(Massager(g, o), Catch::Contains("massage.iterations"));
+  o = {};
+  o.mu = 1.0;
+  CHECK_THROWS_WITH(Massager(g, o), Catch::Contains("massage.mu"));
+  o = {};
+  o.pinned = {99};
+  CHECK_THROWS_WITH(Massager(g, o), Catch::Contains("vertex 99 is out of range"));
+  TriMesh bad = g;
+  bad.V(2, 0) = std::nan("");
+  CHECK_THROWS_WITH(Massager(bad, MassageOptions{}, "rest.obj"), Catch::Contains("rest.obj"));
+  const Massager m(g, MassageOptions{});
+  const Reference ref(g, SampleKind::Vertices);
+  Positions start = g.V;
+  start(0, 0) = std::numeric_limits<double>::infinity();
+  const MassageResult r = m.run(start, ref);
+  CHECK_FALSE(r.ok);
+  CHECK_THAT(r.failure, Catch::Contains("NaN or infinite"));
+}

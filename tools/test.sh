@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds seqmassage and runs every test: the Release build, then the test suite again under
+# AddressSanitizer + UndefinedBehaviorSanitizer. This is the README's test command and all that
+# .ci/run does.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+bash tools/setup.sh
+jobs="$(nproc 2>/dev/null || echo 2)"
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$jobs"
+ctest --test-dir build --output-on-failure -j"$jobs"
+
+if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEQMASSAGE_ASAN=ON \
+    -DSEQMASSAGE_BUILD_TOOLS=OFF >/dev/null
+  cmake --build build-asan -j"$jobs"
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --test-dir build-asan --output-on-failure -j"$jobs"
+fi
