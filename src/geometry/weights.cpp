@@ -1,10 +1,52 @@
 #include "geometry/weights.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace sm {
+namespace {
 
-ShapeWeights compute_weights(const TriMesh& templ, WeightKind kind) {
+// Boundary vertices get weights over their two boundary neighbours p, q only:
+// λ_p = |t_q − t_i| / (|t_p − t_i| + |t_q − t_i|), λ_q likewise; the other entries stay in the
+// pattern with weight 0.
+void apply_curve_weights(const TriMesh& templ, ShapeWeights& w) {
+  const int n = templ.num_vertices();
+  // Boundary half-edges (a→b) are those without a twin (b→a).
+  std::vector<std::pair<uint64_t, int>> half;
+  half.reserve(static_cast<size_t>(templ.num_triangles()) * 3);
+  for (int t = 0; t < templ.num_triangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = templ.F(t, k), b = templ.F(t, (k + 1) % 3);
+      half.emplace_back((uint64_t(a) << 32) | b, 0);
+    }
+  std::vector<uint64_t> keys;
+  keys.reserve(half.size());
+  for (auto& h : half) keys.push_back(h.first);
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::vector<int>> bnb(n);
+  for (uint64_t k : keys) {
+    const uint32_t a = k >> 32, b = k & 0xffffffffu;
+    const uint64_t twin = (uint64_t(b) << 32) | a;
+    if (!std::binary_search(keys.begin(), keys.end(), twin)) {
+      bnb[a].push_back(static_cast<int>(b));
+      bnb[b].push_back(static_cast<int>(a));
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (bnb[i].size() != 2 || bnb[i][0] == bnb[i][1]) continue;
+    const int p = bnb[i][0], q = bnb[i][1];
+    const double lp = (templ.vertex(p) - templ.vertex(i)).norm();
+    const double lq = (templ.vertex(q) - templ.vertex(i)).norm();
+    if (!(lp > 0.0) || !(lq > 0.0)) continue;
+    for (SparseMatrixR::InnerIterator it(w.lambda, i); it; ++it)
+      it.valueRef() = it.col() == p ? lq / (lp + lq) : it.col() == q ? lp / (lp + lq) : 0.0;
+  }
+}
+
+}  // namespace
+
+ShapeWeights compute_weights(const TriMesh& templ, WeightKind kind, BoundaryWeights boundary) {
   const int n = templ.num_vertices(), m = templ.num_triangles();
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<size_t>(m) * 6);
@@ -51,6 +93,7 @@ ShapeWeights compute_weights(const TriMesh& templ, WeightKind kind) {
     if (sum > 0.0)
       for (SparseMatrixR::InnerIterator it(out.lambda, i); it; ++it) it.valueRef() /= sum;
   }
+  if (boundary == BoundaryWeights::Curve) apply_curve_weights(templ, out);
   return out;
 }
 

@@ -15,6 +15,18 @@ enum class WeightKind {
   Uniform,    ///< 1/valence: equalizes triangles (the paper's smoothing, §4)
 };
 
+/// How vertices on a boundary loop are weighted.
+enum class BoundaryWeights {
+  /// Floater's formula restricted to the triangles present (a boundary edge has one triangle and
+  /// one term). Its average lies well inside the mesh (0.6 edge lengths on a regular grid), so
+  /// the shape term pulls open boundaries inwards and only the distance term holds them.
+  OneSided,
+  /// 1-D barycentric weights over the two boundary neighbours (by edge length), 0 for the others:
+  /// reproduces a straight boundary exactly, like mean value weights reproduce a planar one-ring,
+  /// so the boundary keeps the template's spacing along itself.
+  Curve,
+};
+
 struct ShapeWeights {
   /// Λ, n×n: row i holds λ_ij ≥ 0 over i's neighbours j, summing to 1 (an isolated vertex has an
   /// empty row).
@@ -28,7 +40,10 @@ struct ShapeWeights {
 /// w_ij = Σ over the (one or two) triangles holding edge (i, j) of tan(θ_i/2) / |t_j − t_i|, θ_i the
 /// triangle's angle at t_i, with tan(θ/2) = |e1×e2| / (|e1||e2| + e1·e2) (no trig calls, stable);
 /// λ_ij = w_ij / Σ_k w_ik. Works on any triangle list, manifold or not, with or without boundary.
-ShapeWeights compute_weights(const TriMesh& templ, WeightKind kind);
+/// `boundary` chooses the weights of vertices on a boundary loop (manifold boundaries only: a
+/// vertex with other than two boundary neighbours keeps the one-sided weights).
+ShapeWeights compute_weights(const TriMesh& templ, WeightKind kind,
+                             BoundaryWeights boundary = BoundaryWeights::Curve);
 
 /// A = I − Λ (n×n, not symmetric), with an explicit diagonal entry in every row; a vertex with no
 /// neighbours gets an all-zero row (it has no shape to keep).

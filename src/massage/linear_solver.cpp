@@ -31,7 +31,7 @@ void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y) {
 
 bool Ilu0::factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots) {
   K_ = &K;
-  diag_ = &diagonal_slots;
+  diag_ = diagonal_slots;
   const int n = static_cast<int>(K.rows());
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();
@@ -59,7 +59,7 @@ bool Ilu0::factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots
 
 void Ilu0::apply(const Positions& R, Positions& Z) const {
   const SparseMatrixR& K = *K_;
-  const std::vector<int>& diag = *diag_;
+  const std::vector<int>& diag = diag_;
   const int n = static_cast<int>(K.rows());
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();

@@ -25,14 +25,15 @@ void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y);
 /// and an explicit diagonal). The structure is K's; factor() only recomputes the values.
 class Ilu0 {
  public:
-  /// Computes the factors of K's current values. Returns false on a zero pivot.
+  /// Computes the factors of K's current values (K must outlive this object's use; the diagonal
+  /// slots are copied). Returns false on a zero pivot.
   bool factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots);
   /// Z = (LU)⁻¹ R, n×3.
   void apply(const Positions& R, Positions& Z) const;
 
  private:
   const SparseMatrixR* K_ = nullptr;
-  const std::vector<int>* diag_ = nullptr;
+  std::vector<int> diag_;
   std::vector<double> lu_;
   std::vector<int> marker_;
 };

@@ -65,7 +65,6 @@ struct Massager::Impl {
   SystemPattern pattern;
   std::vector<unsigned char> pinned;  // n flags
   int num_pinned = 0;
-  double template_mean_edge = 0.0;
 };
 
 Massager::Massager(const TriMesh& templ, MassageOptions options, const char* name)
@@ -78,7 +77,7 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   s.options = std::move(options);
   s.F = templ.F;
   s.topology = std::make_shared<const Topology>(build_topology(templ));
-  s.weights = compute_weights(templ, s.options.weights);
+  s.weights = compute_weights(templ, s.options.weights, s.options.boundary_weights);
   s.pattern = SystemPattern(shape_matrix(s.weights), templ.F);
   s.pinned.assign(n, 0);
   for (int v : s.options.pinned) s.pinned[v] = 1;
@@ -86,7 +85,6 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
     for (int v = 0; v < n; ++v)
       if (s.topology->is_boundary_vertex[v]) s.pinned[v] = 1;
   for (unsigned char p : s.pinned) s.num_pinned += p;
-  s.template_mean_edge = mean_edge_length(templ);
 }
 
 Massager::~Massager() = default;
@@ -132,7 +130,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
   Eigen::VectorXd alpha = Eigen::VectorXd::Ones(n), beta = Eigen::VectorXd::Ones(W.rows());
   Eigen::VectorXd d_alpha(n), d_beta(W.rows());
 
-  const double move_limit = o.tolerance * (s.template_mean_edge > 0.0 ? mean_edge_length(M) : 0.0);
+  const double move_limit = o.tolerance * mean_edge_length(M);
   SparseMatrixR K = s.pattern.shape_matrix();  // values overwritten every iteration
   const std::vector<double> A_values(K.valuePtr(), K.valuePtr() + K.nonZeros());
   std::vector<double> B_values;

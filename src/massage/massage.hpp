@@ -35,6 +35,9 @@ enum class ClosestPointMode {
 /// (key names in quotes).
 struct MassageOptions {
   WeightKind weights = WeightKind::MeanValue;  ///< "weights": "mean_value" | "uniform"
+  /// "boundary_weights": "curve" (1-D weights along boundary loops) | "one_sided" (Floater's
+  /// formula on the triangles present, which pulls open boundaries inwards; see weights.hpp)
+  BoundaryWeights boundary_weights = BoundaryWeights::Curve;
   int iterations = 15;                         ///< "iterations": outer iterations, >= 1
   std::optional<double> mu;                    ///< "mu": "auto" (empty) or a value in [0, 1)
   SampleKind samples = SampleKind::Vertices;   ///< "samples": samples w_j of N

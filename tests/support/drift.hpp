@@ -19,10 +19,11 @@ struct SmoothField {
   double U = 1, V = 1;
   bool window_u = true, window_v = true;
 
-  SmoothField(unsigned seed, double amplitude, double U_, double V_, int count = 6)
+  SmoothField(unsigned seed, double amplitude, double U_, double V_, int count = 6,
+              double kmin = 2.0, double kmax = 5.0)
       : U(U_), V(V_) {
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> k(1.0, 3.0), ph(0.0, 2.0 * M_PI), a(-1.0, 1.0);
+    std::uniform_real_distribution<double> k(kmin, kmax), ph(0.0, 2.0 * M_PI), a(-1.0, 1.0);
     for (int i = 0; i < count; ++i)
       waves.push_back({k(rng), k(rng), ph(rng), amplitude * a(rng) / std::sqrt(count),
                        amplitude * a(rng) / std::sqrt(count)});
