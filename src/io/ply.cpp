@@ -1,0 +1,447 @@
+#include "io/ply.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "io/atomic_file.hpp"
+#include "io/text_scan.hpp"
+#include "mesh/errors.hpp"
+
+namespace sm {
+namespace {
+
+enum class PlyType : uint8_t {
+  kInt8,
+  kUInt8,
+  kInt16,
+  kUInt16,
+  kInt32,
+  kUInt32,
+  kFloat32,
+  kFloat64
+};
+
+bool parse_type(std::string_view s, PlyType& type) {
+  static const struct {
+    const char* name;
+    const char* alias;
+    PlyType type;
+  } kTypes[] = {{"char", "int8", PlyType::kInt8},        {"uchar", "uint8", PlyType::kUInt8},
+                {"short", "int16", PlyType::kInt16},     {"ushort", "uint16", PlyType::kUInt16},
+                {"int", "int32", PlyType::kInt32},       {"uint", "uint32", PlyType::kUInt32},
+                {"float", "float32", PlyType::kFloat32}, {"double", "float64", PlyType::kFloat64}};
+  for (const auto& t : kTypes) {
+    if (s == t.name || s == t.alias) {
+      type = t.type;
+      return true;
+    }
+  }
+  return false;
+}
+
+size_t type_size(PlyType t) {
+  static const size_t kSizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+  return kSizes[static_cast<int>(t)];
+}
+
+bool is_float(PlyType t) {
+  return t == PlyType::kFloat32 || t == PlyType::kFloat64;
+}
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::kFloat32;  ///< scalar type, or the item type of a list
+  bool list = false;
+  PlyType count_type = PlyType::kUInt8;
+};
+
+struct PlyElement {
+  std::string name;
+  int64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+struct PlyHeader {
+  bool binary = false;
+  std::vector<PlyElement> elements;
+  size_t body = 0;    ///< offset of the first byte after end_header
+  int body_line = 0;  ///< number of the first line after end_header
+};
+
+PlyHeader parse_header(std::string_view data, const std::string& name) {
+  PlyHeader header;
+  size_t pos = 0;
+  int line_no = 0;
+  std::string_view line;
+  auto next_line = [&]() {
+    if (pos >= data.size()) return false;
+    const size_t nl = data.find('\n', pos);
+    const size_t end = nl == std::string_view::npos ? data.size() : nl;
+    line = data.substr(pos, end - pos);
+    pos = end == data.size() ? end : end + 1;
+    ++line_no;
+    return true;
+  };
+  auto fail = [&](const std::string& message) {
+    throw InputError(name + ":" + std::to_string(line_no) + ": " + message);
+  };
+  size_t at = 0;
+  if (!next_line() || next_token(line, at) != "ply" || !next_token(line, at).empty()) {
+    throw InputError(name + ": not a PLY file (the first line is not 'ply')");
+  }
+  bool format = false;
+  for (;;) {
+    if (!next_line()) throw InputError(name + ": the PLY header has no end_header line");
+    at = 0;
+    const std::string_view keyword = next_token(line, at);
+    if (keyword == "end_header") break;
+    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "format") {
+      const std::string_view f = next_token(line, at);
+      if (f == "binary_big_endian") fail("format binary_big_endian is not supported");
+      if (f != "ascii" && f != "binary_little_endian") {
+        fail("unknown format '" + std::string(f) + "' (expected ascii or binary_little_endian)");
+      }
+      header.binary = f == "binary_little_endian";
+      format = true;
+    } else if (keyword == "element") {
+      PlyElement e;
+      e.name = std::string(next_token(line, at));
+      const std::string_view count = next_token(line, at);
+      if (e.name.empty() || !parse_int(count, e.count) || e.count < 0 || e.count > 0x7fffffff) {
+        fail("expected 'element <name> <count>' with a count from 0 to 2^31-1");
+      }
+      header.elements.push_back(std::move(e));
+    } else if (keyword == "property") {
+      if (header.elements.empty()) fail("property before the first element");
+      PlyProperty p;
+      std::string_view type = next_token(line, at);
+      if (type == "list") {
+        p.list = true;
+        const std::string_view count_type = next_token(line, at);
+        if (!parse_type(count_type, p.count_type) || is_float(p.count_type)) {
+          fail("list count type '" + std::string(count_type) + "' is not an integer type");
+        }
+        type = next_token(line, at);
+      }
+      if (!parse_type(type, p.type)) fail("unknown property type '" + std::string(type) + "'");
+      p.name = std::string(next_token(line, at));
+      if (p.name.empty()) fail("property without a name");
+      header.elements.back().properties.push_back(std::move(p));
+    } else {
+      fail("unknown header keyword '" + std::string(keyword) + "'");
+    }
+  }
+  if (!format) throw InputError(name + ": the PLY header has no format line");
+  header.body = pos;
+  header.body_line = line_no + 1;
+  return header;
+}
+
+// Reads the values of the body in order, as text tokens or little-endian binary.
+class PlyBody {
+ public:
+  PlyBody(std::string_view data, const PlyHeader& header, const std::string& name)
+      : data_(data),
+        pos_(header.body),
+        line_(header.body_line),
+        binary_(header.binary),
+        name_(name) {}
+
+  // `element`, `item` and `property` name the value in messages.
+  double read(PlyType type, const PlyElement& element, int64_t item, const std::string& property) {
+    return binary_ ? read_binary(type, element, item, property)
+                   : read_text(type, element, item, property);
+  }
+
+  [[noreturn]] void fail(const PlyElement& element, int64_t item, const std::string& message) {
+    const std::string where = binary_ ? name_ : name_ + ":" + std::to_string(line_);
+    throw InputError(where + ": " + element.name + " " + std::to_string(item) + ": " + message);
+  }
+
+ private:
+  double read_binary(PlyType type, const PlyElement& element, int64_t item,
+                     const std::string& property) {
+    const size_t size = type_size(type);
+    if (data_.size() - pos_ < size) {
+      fail(element, item,
+           property + ": the data ends early (binary, byte " + std::to_string(pos_) + ")");
+    }
+    uint64_t bits = 0;
+    for (size_t b = 0; b < size; ++b) {
+      bits |= uint64_t(static_cast<uint8_t>(data_[pos_ + b])) << (8 * b);
+    }
+    pos_ += size;
+    switch (type) {
+      case PlyType::kInt8:
+        return static_cast<int8_t>(bits);
+      case PlyType::kUInt8:
+        return static_cast<uint8_t>(bits);
+      case PlyType::kInt16:
+        return static_cast<int16_t>(bits);
+      case PlyType::kUInt16:
+        return static_cast<uint16_t>(bits);
+      case PlyType::kInt32:
+        return static_cast<int32_t>(bits);
+      case PlyType::kUInt32:
+        return static_cast<uint32_t>(bits);
+      case PlyType::kFloat32: {
+        const auto b32 = static_cast<uint32_t>(bits);
+        float f;
+        std::memcpy(&f, &b32, sizeof f);
+        return f;
+      }
+      case PlyType::kFloat64: {
+        double d;
+        std::memcpy(&d, &bits, sizeof d);
+        return d;
+      }
+    }
+    return 0.0;
+  }
+
+  double read_text(PlyType type, const PlyElement& element, int64_t item,
+                   const std::string& property) {
+    int line = line_;  // line_ stays on the last token's line when the data ends
+    while (pos_ < data_.size() && (is_blank(data_[pos_]) || data_[pos_] == '\n')) {
+      if (data_[pos_++] == '\n') ++line;
+    }
+    if (pos_ < data_.size()) line_ = line;
+    size_t end = pos_;
+    while (end < data_.size() && !is_blank(data_[end]) && data_[end] != '\n') ++end;
+    const std::string_view token = data_.substr(pos_, end - pos_);
+    if (token.empty()) fail(element, item, property + ": the data ends early");
+    pos_ = end;
+    if (is_float(type)) {
+      double value = 0;
+      if (!parse_double(token, value)) {
+        fail(element, item, property + " '" + std::string(token) + "' is not a number");
+      }
+      return value;
+    }
+    int64_t value = 0;
+    if (!parse_int(token, value)) {
+      fail(element, item, property + " '" + std::string(token) + "' is not an integer");
+    }
+    return static_cast<double>(value);
+  }
+
+  std::string_view data_;
+  size_t pos_;
+  int line_;
+  bool binary_;
+  const std::string& name_;
+};
+
+uint8_t to_channel(double value, PlyType type) {
+  const double scaled = is_float(type) ? std::round(value * 255.0) : value;
+  return static_cast<uint8_t>(std::clamp(std::isfinite(scaled) ? scaled : 0.0, 0.0, 255.0));
+}
+
+int find_property(const PlyElement& e, std::string_view name, bool list) {
+  for (size_t k = 0; k < e.properties.size(); ++k) {
+    if (e.properties[k].name == name && e.properties[k].list == list) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+}  // namespace
+
+TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* colors) {
+  const PlyHeader header = parse_header(data, name);
+  const PlyElement* vertex_element = nullptr;
+  const PlyElement* face_element = nullptr;
+  for (const PlyElement& e : header.elements) {
+    if (e.name == "vertex" && !vertex_element) vertex_element = &e;
+    if (e.name == "face" && !face_element) face_element = &e;
+  }
+  if (!vertex_element || vertex_element->count == 0) {
+    throw InputError(name + ": no vertices (no 'vertex' element, or its count is 0)");
+  }
+  if (!face_element || face_element->count == 0) {
+    throw InputError(name + ": no faces (no 'face' element, or its count is 0)");
+  }
+  const PlyElement& ve = *vertex_element;
+  const PlyElement& fe = *face_element;
+  int xyz[3];
+  for (int c = 0; c < 3; ++c) {
+    xyz[c] = find_property(ve, std::string(1, "xyz"[c]), false);
+    if (xyz[c] < 0) {
+      throw InputError(name + ": the vertex element has no scalar property " + "xyz"[c]);
+    }
+  }
+  int indices = find_property(fe, "vertex_indices", true);
+  if (indices < 0) indices = find_property(fe, "vertex_index", true);
+  if (indices < 0) {
+    throw InputError(name + ": the face element has no list property vertex_indices");
+  }
+  const int vrgb[3] = {find_property(ve, "red", false), find_property(ve, "green", false),
+                       find_property(ve, "blue", false)};
+  const int frgb[3] = {find_property(fe, "red", false), find_property(fe, "green", false),
+                       find_property(fe, "blue", false)};
+  const bool vertex_colors = colors && vrgb[0] >= 0 && vrgb[1] >= 0 && vrgb[2] >= 0;
+  const bool face_colors = colors && frgb[0] >= 0 && frgb[1] >= 0 && frgb[2] >= 0;
+  if (colors) *colors = PlyColors{};
+
+  const int64_t nv = ve.count;
+  TriMesh mesh;
+  mesh.V.resize(static_cast<Eigen::Index>(nv), 3);
+  std::vector<int> tris, poly;
+  PlyBody body(data, header, name);
+  int done = 0;
+  for (const PlyElement& e : header.elements) {
+    const bool is_vertex = &e == &ve, is_face = &e == &fe;
+    const int np = static_cast<int>(e.properties.size());
+    for (int64_t item = 0; item < e.count; ++item) {
+      std::array<uint8_t, 3> rgb{};
+      for (int k = 0; k < np; ++k) {
+        const PlyProperty& p = e.properties[k];
+        if (!p.list) {
+          const double value = body.read(p.type, e, item, p.name);
+          if (is_vertex) {
+            for (int c = 0; c < 3; ++c) {
+              if (k == xyz[c]) {
+                if (!std::isfinite(value)) body.fail(e, item, p.name + " is not finite");
+                mesh.V(static_cast<Eigen::Index>(item), c) = value;
+              }
+              if (vertex_colors && k == vrgb[c]) rgb[c] = to_channel(value, p.type);
+            }
+          } else if (is_face && face_colors) {
+            for (int c = 0; c < 3; ++c) {
+              if (k == frgb[c]) rgb[c] = to_channel(value, p.type);
+            }
+          }
+          continue;
+        }
+        const double n = body.read(p.count_type, e, item, p.name + " count");
+        if (n < 0) body.fail(e, item, p.name + ": negative list length");
+        const bool corners = is_face && k == indices;
+        if (corners) poly.clear();
+        for (int64_t j = 0; j < static_cast<int64_t>(n); ++j) {
+          const double value = body.read(p.type, e, item, p.name);
+          if (!corners) continue;
+          if (!(value >= 0 && value < static_cast<double>(nv)) || value != std::floor(value)) {
+            std::string text;
+            append_double(text, value);
+            body.fail(e, item,
+                      "corner " + std::to_string(j + 1) + ": vertex index " + text +
+                          (value != std::floor(value)
+                               ? " is not an integer"
+                               : " is out of range (the file has " + std::to_string(nv) +
+                                     " vertices, numbered from 0)"));
+          }
+          poly.push_back(static_cast<int>(value));
+        }
+        if (corners && n < 3) {
+          body.fail(
+              e, item,
+              "a face needs at least 3 corners, found " + std::to_string(static_cast<int64_t>(n)));
+        }
+      }
+      if (is_vertex && vertex_colors) colors->vertex.push_back(rgb);
+      if (is_face) {
+        for (size_t k = 1; k + 1 < poly.size(); ++k) {
+          tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
+          if (face_colors) colors->face.push_back(rgb);
+        }
+      }
+    }
+    if (is_vertex) ++done;
+    if (is_face) ++done;
+    if (done == 2) break;  // later elements are not needed
+  }
+  mesh.F = Eigen::Map<const Triangles>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
+  return mesh;
+}
+
+TriMesh read_ply(const std::filesystem::path& path, PlyColors* colors) {
+  const std::string data = read_file(path);
+  return parse_ply(data, path.string(), colors);
+}
+
+namespace {
+
+void append_le(std::string& out, uint64_t bits, size_t bytes) {
+  for (size_t b = 0; b < bytes; ++b) out += static_cast<char>((bits >> (8 * b)) & 0xff);
+}
+
+void append_rgb(std::string& out, const std::array<uint8_t, 3>& rgb, bool binary) {
+  for (const uint8_t channel : rgb) {
+    if (binary) {
+      out += static_cast<char>(channel);
+    } else {
+      out += ' ';
+      append_int(out, channel);
+    }
+  }
+}
+
+}  // namespace
+
+std::string format_ply(const TriMesh& mesh, const PlyColors* colors, bool binary) {
+  validate_mesh(mesh, "cannot write PLY");
+  const size_t nv = static_cast<size_t>(mesh.num_vertices());
+  const size_t nf = static_cast<size_t>(mesh.num_triangles());
+  const bool vertex_colors = colors && !colors->vertex.empty();
+  const bool face_colors = colors && !colors->face.empty();
+  if (vertex_colors && colors->vertex.size() != nv) {
+    throw InputError("cannot write PLY: " + std::to_string(colors->vertex.size()) +
+                     " vertex colours for " + std::to_string(nv) + " vertices");
+  }
+  if (face_colors && colors->face.size() != nf) {
+    throw InputError("cannot write PLY: " + std::to_string(colors->face.size()) +
+                     " face colours for " + std::to_string(nf) + " triangles");
+  }
+  const char* const rgb_properties =
+      "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  std::string out = "ply\nformat ";
+  out += binary ? "binary_little_endian" : "ascii";
+  out += " 1.0\ncomment written by seqmassage\nelement vertex ";
+  append_int(out, static_cast<int64_t>(nv));
+  out += "\nproperty double x\nproperty double y\nproperty double z\n";
+  if (vertex_colors) out += rgb_properties;
+  out += "element face ";
+  append_int(out, static_cast<int64_t>(nf));
+  out += "\nproperty list uchar int vertex_indices\n";
+  if (face_colors) out += rgb_properties;
+  out += "end_header\n";
+  out.reserve(out.size() + nv * (binary ? 27 : 48) + nf * (binary ? 16 : 28));
+  for (size_t i = 0; i < nv; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double value = mesh.V(static_cast<Eigen::Index>(i), c);
+      if (binary) {
+        uint64_t bits;
+        std::memcpy(&bits, &value, sizeof bits);
+        append_le(out, bits, 8);
+      } else {
+        if (c > 0) out += ' ';
+        append_double(out, value);
+      }
+    }
+    if (vertex_colors) append_rgb(out, colors->vertex[i], binary);
+    if (!binary) out += '\n';
+  }
+  for (size_t t = 0; t < nf; ++t) {
+    out += binary ? '\3' : '3';
+    for (int k = 0; k < 3; ++k) {
+      const int index = mesh.F(static_cast<Eigen::Index>(t), k);
+      if (binary) {
+        append_le(out, static_cast<uint32_t>(index), 4);
+      } else {
+        out += ' ';
+        append_int(out, index);
+      }
+    }
+    if (face_colors) append_rgb(out, colors->face[t], binary);
+    if (!binary) out += '\n';
+  }
+  return out;
+}
+
+void write_ply(const std::filesystem::path& path, const TriMesh& mesh, const PlyColors* colors,
+               bool binary) {
+  write_file_atomic(path, format_ply(mesh, colors, binary));
+}
+
+}  // namespace sm
