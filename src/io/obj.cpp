@@ -84,13 +84,14 @@ class ObjParser {
     }
   }
 
-  double number(std::string_view token, const char* statement, const std::string& field) const {
+  // `field()` names the value in messages; it is only called for one.
+  template <class Field>
+  double number(std::string_view token, const char* statement, Field field) const {
     double value = 0;
-    if (!parse_double(token, value)) {
-      fail(std::string(statement) + ": " + field + " '" + std::string(token) + "' is not a number");
-    }
-    if (!std::isfinite(value)) {
-      fail(std::string(statement) + ": " + field + " '" + std::string(token) + "' is not finite");
+    const bool numeric = parse_double(token, value);
+    if (!numeric || !std::isfinite(value)) {
+      fail(std::string(statement) + ": " + field() + " '" + std::string(token) +
+           (numeric ? "' is not finite" : "' is not a number"));
     }
     return value;
   }
@@ -101,13 +102,14 @@ class ObjParser {
       if (token.empty()) {
         fail("v: expected 3 coordinates (x y z), found " + std::to_string(c));
       }
-      positions_.push_back(number(token, "v", std::string("coordinate ") + "xyz"[c]));
+      positions_.push_back(
+          number(token, "v", [c] { return std::string("coordinate ") + "xyz"[c]; }));
     }
     // w or vertex colours: validated here, written back from the text.
     for (int k = 1;; ++k) {
       const std::string_view token = next_token(data, at);
       if (token.empty()) break;
-      number(token, "v", "extra value " + std::to_string(k) + " (w or colour)");
+      number(token, "v", [k] { return "extra value " + std::to_string(k) + " (w or colour)"; });
     }
   }
 
@@ -129,11 +131,11 @@ class ObjParser {
            "), found " + std::to_string(count));
     }
     for (int k = 0; k < stored; ++k) {
-      out.push_back(k < count ? number(tokens[k], statement, std::string("coordinate ") + names[k])
-                              : 0.0);
+      const auto field = [&] { return std::string("coordinate ") + names[k]; };
+      out.push_back(k < count ? number(tokens[k], statement, field) : 0.0);
     }
     for (int k = stored; k < count; ++k) {
-      number(tokens[k], statement, std::string("coordinate ") + names[k]);
+      number(tokens[k], statement, [&] { return std::string("coordinate ") + names[k]; });
     }
   }
 
@@ -197,17 +199,20 @@ class ObjParser {
       }
       start = slash + 1;
     }
-    const std::string where = "f: corner " + std::to_string(k) + " '" + std::string(token) + "'";
     if (too_many || parts[0].empty() || (count == 2 && parts[1].empty()) ||
         (count == 3 && parts[2].empty())) {
-      fail(where + ": expected v, v/vt, v//vn or v/vt/vn");
+      fail(corner_name(k, token) + ": expected v, v/vt, v//vn or v/vt/vn");
     }
     form = (count >= 2 && !parts[1].empty() ? 1 : 0) | (count == 3 ? 2 : 0);
     ObjCorner c;
-    c.v = resolve(parts[0], 0, k, token, where);
-    if (form & 1) c.vt = resolve(parts[1], 1, k, token, where);
-    if (form & 2) c.vn = resolve(parts[2], 2, k, token, where);
+    c.v = resolve(parts[0], 0, k, token);
+    if (form & 1) c.vt = resolve(parts[1], 1, k, token);
+    if (form & 2) c.vn = resolve(parts[2], 2, k, token);
     return c;
+  }
+
+  static std::string corner_name(int k, std::string_view token) {
+    return "f: corner " + std::to_string(k) + " '" + std::string(token) + "'";
   }
 
   int count_of(int field) const {
@@ -217,20 +222,20 @@ class ObjParser {
     return static_cast<int>(n);
   }
 
-  int resolve(std::string_view part, int field, int k, std::string_view token,
-              const std::string& where) {
+  int resolve(std::string_view part, int field, int k, std::string_view token) {
+    const auto where = [&] { return corner_name(k, token); };
     int64_t index = 0;
     if (!parse_int(part, index)) {
-      fail(where + ": " + kIndexName[field] + " index '" + std::string(part) +
+      fail(where() + ": " + kIndexName[field] + " index '" + std::string(part) +
            "' is not an integer");
     }
     const int64_t defined = count_of(field);
     if (index == 0) {
-      fail(where + ": " + kIndexName[field] + " index 0 is invalid (OBJ indices start at 1)");
+      fail(where() + ": " + kIndexName[field] + " index 0 is invalid (OBJ indices start at 1)");
     }
     if (index < 0) {
       if (-index > defined) {
-        fail(where + ": relative " + kIndexName[field] + " index " + std::to_string(index) +
+        fail(where() + ": relative " + kIndexName[field] + " index " + std::to_string(index) +
              " is out of range (" + std::to_string(defined) + " " + kCountName[field] +
              " defined before this line)");
       }
@@ -238,7 +243,7 @@ class ObjParser {
     }
     if (index > defined) {
       if (index > INT_MAX) {
-        fail(where + ": " + kIndexName[field] + " index " + std::to_string(index) +
+        fail(where() + ": " + kIndexName[field] + " index " + std::to_string(index) +
              " is out of range");
       }
       forward_.push_back({line_, k, field, index, std::string(token)});

@@ -44,15 +44,17 @@ class OffParser {
       line = expect_line("vertices", nv, i);
       at = 0;
       for (int c = 0; c < 3; ++c) {
-        const std::string where = "vertex " + std::to_string(i) + ": coordinate " + "xyz"[c];
+        const auto where = [&] {
+          return "vertex " + std::to_string(i) + ": coordinate " + "xyz"[c];
+        };
         const std::string_view token = next_token(line, at);
-        if (token.empty()) fail(line_, where + " is missing");
+        if (token.empty()) fail(line_, where() + " is missing");
         double value = 0;
         if (!parse_double(token, value)) {
-          fail(line_, where + " '" + std::string(token) + "' is not a number");
+          fail(line_, where() + " '" + std::string(token) + "' is not a number");
         }
         if (!std::isfinite(value)) {
-          fail(line_, where + " '" + std::string(token) + "' is not finite");
+          fail(line_, where() + " '" + std::string(token) + "' is not finite");
         }
         mesh.V(i, c) = value;
       }
@@ -63,29 +65,29 @@ class OffParser {
     for (int f = 0; f < nf; ++f) {
       line = expect_line("faces", nf, f);
       at = 0;
-      const std::string face = "face " + std::to_string(f);
+      const auto face = [f] { return "face " + std::to_string(f); };
       const std::string_view n_token = next_token(line, at);
       int64_t n = 0;
       if (!parse_int(n_token, n)) {
-        fail(line_, face + ": corner count '" + std::string(n_token) + "' is not an integer");
+        fail(line_, face() + ": corner count '" + std::string(n_token) + "' is not an integer");
       }
       if (n < 3) {
-        fail(line_, face + ": a face needs at least 3 corners, found " + std::to_string(n));
+        fail(line_, face() + ": a face needs at least 3 corners, found " + std::to_string(n));
       }
       poly.clear();
       for (int64_t k = 0; k < n; ++k) {
-        const std::string where = face + ": corner " + std::to_string(k + 1);
+        const auto where = [&] { return face() + ": corner " + std::to_string(k + 1); };
         const std::string_view token = next_token(line, at);
         if (token.empty()) {
-          fail(line_, face + ": expected " + std::to_string(n) + " vertex indices, found " +
+          fail(line_, face() + ": expected " + std::to_string(n) + " vertex indices, found " +
                           std::to_string(k));
         }
         int64_t index = 0;
         if (!parse_int(token, index)) {
-          fail(line_, where + ": vertex index '" + std::string(token) + "' is not an integer");
+          fail(line_, where() + ": vertex index '" + std::string(token) + "' is not an integer");
         }
         if (index < 0 || index >= nv) {
-          fail(line_, where + ": vertex index " + std::to_string(index) +
+          fail(line_, where() + ": vertex index " + std::to_string(index) +
                           " is out of range (the file has " + std::to_string(nv) +
                           " vertices, numbered from 0)");
         }

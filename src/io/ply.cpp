@@ -150,9 +150,11 @@ class PlyBody {
         name_(name) {}
 
   // `element`, `item` and `property` name the value in messages.
-  double read(PlyType type, const PlyElement& element, int64_t item, const std::string& property) {
-    return binary_ ? read_binary(type, element, item, property)
-                   : read_text(type, element, item, property);
+  // `list_count`: the value is the length of list `property`.
+  double read(PlyType type, const PlyElement& element, int64_t item, const PlyProperty& property,
+              bool list_count = false) {
+    return binary_ ? read_binary(type, element, item, property, list_count)
+                   : read_text(type, element, item, property, list_count);
   }
 
   [[noreturn]] void fail(const PlyElement& element, int64_t item, const std::string& message) {
@@ -161,12 +163,17 @@ class PlyBody {
   }
 
  private:
+  static std::string label(const PlyProperty& property, bool list_count) {
+    return list_count ? property.name + " count" : property.name;
+  }
+
   double read_binary(PlyType type, const PlyElement& element, int64_t item,
-                     const std::string& property) {
+                     const PlyProperty& property, bool list_count) {
     const size_t size = type_size(type);
     if (data_.size() - pos_ < size) {
       fail(element, item,
-           property + ": the data ends early (binary, byte " + std::to_string(pos_) + ")");
+           label(property, list_count) + ": the data ends early (binary, byte " +
+               std::to_string(pos_) + ")");
     }
     uint64_t bits = 0;
     for (size_t b = 0; b < size; ++b) {
@@ -202,7 +209,7 @@ class PlyBody {
   }
 
   double read_text(PlyType type, const PlyElement& element, int64_t item,
-                   const std::string& property) {
+                   const PlyProperty& property, bool list_count) {
     int line = line_;  // line_ stays on the last token's line when the data ends
     while (pos_ < data_.size() && (is_blank(data_[pos_]) || data_[pos_] == '\n')) {
       if (data_[pos_++] == '\n') ++line;
@@ -211,18 +218,20 @@ class PlyBody {
     size_t end = pos_;
     while (end < data_.size() && !is_blank(data_[end]) && data_[end] != '\n') ++end;
     const std::string_view token = data_.substr(pos_, end - pos_);
-    if (token.empty()) fail(element, item, property + ": the data ends early");
+    if (token.empty()) fail(element, item, label(property, list_count) + ": the data ends early");
     pos_ = end;
     if (is_float(type)) {
       double value = 0;
       if (!parse_double(token, value)) {
-        fail(element, item, property + " '" + std::string(token) + "' is not a number");
+        fail(element, item,
+             label(property, list_count) + " '" + std::string(token) + "' is not a number");
       }
       return value;
     }
     int64_t value = 0;
     if (!parse_int(token, value)) {
-      fail(element, item, property + " '" + std::string(token) + "' is not an integer");
+      fail(element, item,
+           label(property, list_count) + " '" + std::string(token) + "' is not an integer");
     }
     return static_cast<double>(value);
   }
@@ -298,7 +307,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
       for (int k = 0; k < np; ++k) {
         const PlyProperty& p = e.properties[k];
         if (!p.list) {
-          const double value = body.read(p.type, e, item, p.name);
+          const double value = body.read(p.type, e, item, p);
           if (is_vertex) {
             for (int c = 0; c < 3; ++c) {
               if (k == xyz[c]) {
@@ -314,12 +323,12 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
           }
           continue;
         }
-        const double n = body.read(p.count_type, e, item, p.name + " count");
+        const double n = body.read(p.count_type, e, item, p, true);
         if (n < 0) body.fail(e, item, p.name + ": negative list length");
         const bool corners = is_face && k == indices;
         if (corners) poly.clear();
         for (int64_t j = 0; j < static_cast<int64_t>(n); ++j) {
-          const double value = body.read(p.type, e, item, p.name);
+          const double value = body.read(p.type, e, item, p);
           if (!corners) continue;
           if (!(value >= 0 && value < static_cast<double>(nv)) || value != std::floor(value)) {
             std::string text;
@@ -358,90 +367,6 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
 TriMesh read_ply(const std::filesystem::path& path, PlyColors* colors) {
   const std::string data = read_file(path);
   return parse_ply(data, path.string(), colors);
-}
-
-namespace {
-
-void append_le(std::string& out, uint64_t bits, size_t bytes) {
-  for (size_t b = 0; b < bytes; ++b) out += static_cast<char>((bits >> (8 * b)) & 0xff);
-}
-
-void append_rgb(std::string& out, const std::array<uint8_t, 3>& rgb, bool binary) {
-  for (const uint8_t channel : rgb) {
-    if (binary) {
-      out += static_cast<char>(channel);
-    } else {
-      out += ' ';
-      append_int(out, channel);
-    }
-  }
-}
-
-}  // namespace
-
-std::string format_ply(const TriMesh& mesh, const PlyColors* colors, bool binary) {
-  validate_mesh(mesh, "cannot write PLY");
-  const size_t nv = static_cast<size_t>(mesh.num_vertices());
-  const size_t nf = static_cast<size_t>(mesh.num_triangles());
-  const bool vertex_colors = colors && !colors->vertex.empty();
-  const bool face_colors = colors && !colors->face.empty();
-  if (vertex_colors && colors->vertex.size() != nv) {
-    throw InputError("cannot write PLY: " + std::to_string(colors->vertex.size()) +
-                     " vertex colours for " + std::to_string(nv) + " vertices");
-  }
-  if (face_colors && colors->face.size() != nf) {
-    throw InputError("cannot write PLY: " + std::to_string(colors->face.size()) +
-                     " face colours for " + std::to_string(nf) + " triangles");
-  }
-  const char* const rgb_properties =
-      "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-  std::string out = "ply\nformat ";
-  out += binary ? "binary_little_endian" : "ascii";
-  out += " 1.0\ncomment written by seqmassage\nelement vertex ";
-  append_int(out, static_cast<int64_t>(nv));
-  out += "\nproperty double x\nproperty double y\nproperty double z\n";
-  if (vertex_colors) out += rgb_properties;
-  out += "element face ";
-  append_int(out, static_cast<int64_t>(nf));
-  out += "\nproperty list uchar int vertex_indices\n";
-  if (face_colors) out += rgb_properties;
-  out += "end_header\n";
-  out.reserve(out.size() + nv * (binary ? 27 : 48) + nf * (binary ? 16 : 28));
-  for (size_t i = 0; i < nv; ++i) {
-    for (int c = 0; c < 3; ++c) {
-      const double value = mesh.V(static_cast<Eigen::Index>(i), c);
-      if (binary) {
-        uint64_t bits;
-        std::memcpy(&bits, &value, sizeof bits);
-        append_le(out, bits, 8);
-      } else {
-        if (c > 0) out += ' ';
-        append_double(out, value);
-      }
-    }
-    if (vertex_colors) append_rgb(out, colors->vertex[i], binary);
-    if (!binary) out += '\n';
-  }
-  for (size_t t = 0; t < nf; ++t) {
-    out += binary ? '\3' : '3';
-    for (int k = 0; k < 3; ++k) {
-      const int index = mesh.F(static_cast<Eigen::Index>(t), k);
-      if (binary) {
-        append_le(out, static_cast<uint32_t>(index), 4);
-      } else {
-        out += ' ';
-        append_int(out, index);
-      }
-    }
-    if (face_colors) append_rgb(out, colors->face[t], binary);
-    if (!binary) out += '\n';
-  }
-  return out;
-}
-
-void write_ply(const std::filesystem::path& path, const TriMesh& mesh, const PlyColors* colors,
-               bool binary) {
-  write_file_atomic(path, format_ply(mesh, colors, binary));
 }
 
 }  // namespace sm
