@@ -105,6 +105,7 @@ int main(int argc, char** argv) {
     else if (a == "--iterations") options.iterations = std::stoi(next());
     else if (a == "--solver") options.solver = next() == "direct" ? SolverKind::Direct : SolverKind::Iterative;
     else if (a == "--exact") options.closest_points = ClosestPointMode::Exact;
+    else if (a == "--solver-tolerance") options.solver_tolerance = std::stod(next());
     else if (a == "--verbose") verbose = true;
     else if (a == "--data") data = next();
     else if (a == "--sizes") {
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_massage [--threads N] [--iterations K] [--solver iterative|direct]"
-                   " [--exact] [--verbose] [--sizes 4000,10000] [--data DIR]\n");
+                   " [--solver-tolerance T] [--exact] [--verbose] [--sizes 4000,10000] [--data DIR]\n");
       return 2;
     }
   }

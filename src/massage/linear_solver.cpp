@@ -101,21 +101,49 @@ namespace {
 
 using Col3 = Eigen::Array<double, 1, 3>;
 
+// Per-column dot products of two n×3 row-major arrays, one pass.
 Col3 column_dots(const Positions& a, const Positions& b) {
-  return (a.array() * b.array()).colwise().sum();
+  const double* x = a.data();
+  const double* y = b.data();
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+  const Eigen::Index n = a.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s0 += x[3 * i] * y[3 * i];
+    s1 += x[3 * i + 1] * y[3 * i + 1];
+    s2 += x[3 * i + 2] * y[3 * i + 2];
+  }
+  return Col3(s0, s1, s2);
+}
+
+// out = a + k ⊙ b, with one scalar per column (k broadcast along the rows).
+void axpy_columns(const Positions& a, const Col3& k, const Positions& b, Positions& out) {
+  const Eigen::Index n = a.rows();
+  out.resize(n, 3);
+  const double* x = a.data();
+  const double* y = b.data();
+  double* o = out.data();
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) o[3 * i + c] = x[3 * i + c] + k[c] * y[3 * i + c];
 }
 
 }  // namespace
 
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, Positions& X,
                     double tolerance, int max_iterations) {
+  BicgstabWorkspace ws;
+  return bicgstab(K, M, R, X, tolerance, max_iterations, ws);
+}
+
+SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, Positions& X,
+                    double tolerance, int max_iterations, BicgstabWorkspace& w) {
   SolveStats st;
   const int n = static_cast<int>(K.rows());
-  Positions r(n, 3), rhat(n, 3), p = Positions::Zero(n, 3), v = Positions::Zero(n, 3), y(n, 3),
-      s(n, 3), z(n, 3), t(n, 3);
+  Positions &r = w.r, &rhat = w.rhat, &p = w.p, &v = w.v, &y = w.y, &s = w.s, &z = w.z, &t = w.t;
   multiply(K, X, r);
   r = R - r;
   rhat = r;
+  p.setZero(n, 3);
+  v.setZero(n, 3);
   const Col3 rhs_norm = column_dots(R, R).sqrt();
   Col3 target;
   for (int c = 0; c < 3; ++c) target[c] = tolerance * (rhs_norm[c] > 0.0 ? rhs_norm[c] : 1.0);
@@ -134,53 +162,59 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
   };
   if (all_done()) return finish(true, "");
   for (st.iterations = 1; st.iterations <= max_iterations; ++st.iterations) {
+    // A converged column keeps its X: its step sizes are zero from here on.
     const Col3 rho_new = column_dots(rhat, r);
-    Col3 beta;
+    Col3 beta = Col3::Zero();
     for (int c = 0; c < 3; ++c) {
-      if (done[c]) {
-        beta[c] = 0.0;
-        continue;
-      }
-      if (rho_new[c] == 0.0 || omega[c] == 0.0) return finish(false, "BiCGSTAB breakdown (rho or omega is 0)");
+      if (done[c]) continue;
+      if (rho_new[c] == 0.0 || omega[c] == 0.0)
+        return finish(false, "BiCGSTAB breakdown (rho or omega is 0)");
       beta[c] = (rho_new[c] / rho[c]) * (alpha[c] / omega[c]);
     }
     rho = rho_new;
-    for (int c = 0; c < 3; ++c)
-      if (!done[c]) p.col(c) = r.col(c) + beta[c] * (p.col(c) - omega[c] * v.col(c));
+    {  // p = r + β (p − ω v)
+      double* pp = p.data();
+      const double* rr = r.data();
+      const double* vv = v.data();
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c)
+          pp[3 * i + c] = rr[3 * i + c] + beta[c] * (pp[3 * i + c] - omega[c] * vv[3 * i + c]);
+    }
     M.apply(p, y);
     multiply(K, y, v);
     const Col3 rv = column_dots(rhat, v);
+    Col3 step = Col3::Zero();
     for (int c = 0; c < 3; ++c) {
       if (done[c]) continue;
       if (rv[c] == 0.0) return finish(false, "BiCGSTAB breakdown (r̂·v is 0)");
       alpha[c] = rho[c] / rv[c];
-      s.col(c) = r.col(c) - alpha[c] * v.col(c);
-      X.col(c) += alpha[c] * y.col(c);
+      step[c] = alpha[c];
     }
+    axpy_columns(r, -step, v, s);  // s = r − α v
+    axpy_columns(X, step, y, X);   // X += α y
     const Col3 s_norm = column_dots(s, s).sqrt();
-    bool need_second = false;
-    for (int c = 0; c < 3; ++c) {
-      if (done[c]) continue;
-      if (s_norm[c] <= target[c]) {
-        r.col(c) = s.col(c);
-        res[c] = s_norm[c];
-      } else {
-        need_second = true;
-      }
-    }
-    if (need_second) {
+    Col3 second = Col3::Zero();  // 1 for the columns that need the stabilizing half-step
+    for (int c = 0; c < 3; ++c)
+      if (!done[c] && s_norm[c] > target[c]) second[c] = 1.0;
+    if ((second == 0.0).all()) {
+      for (int c = 0; c < 3; ++c)
+        if (!done[c]) res[c] = s_norm[c];
+      r.swap(s);
+    } else {
       M.apply(s, z);
       multiply(K, z, t);
       const Col3 ts = column_dots(t, s), tt = column_dots(t, t);
+      Col3 om = Col3::Zero();
       for (int c = 0; c < 3; ++c) {
-        if (done[c] || s_norm[c] <= target[c]) continue;
+        if (second[c] == 0.0) continue;
         omega[c] = tt[c] > 0.0 ? ts[c] / tt[c] : 0.0;
-        X.col(c) += omega[c] * z.col(c);
-        r.col(c) = s.col(c) - omega[c] * t.col(c);
+        om[c] = omega[c];
       }
+      axpy_columns(X, om, z, X);   // X += ω z
+      axpy_columns(s, -om, t, r);  // r = s − ω t (= s where ω is 0)
       const Col3 rn = column_dots(r, r).sqrt();
       for (int c = 0; c < 3; ++c)
-        if (!done[c] && s_norm[c] > target[c]) res[c] = rn[c];
+        if (!done[c]) res[c] = second[c] != 0.0 ? rn[c] : s_norm[c];
     }
     if (!res.isFinite().all()) return finish(false, "BiCGSTAB produced a non-finite residual");
     if (all_done()) return finish(true, "");

@@ -38,8 +38,15 @@ class Ilu0 {
   std::vector<int> marker_;
 };
 
+/// Scratch vectors of bicgstab(), kept between calls so iterations allocate nothing.
+struct BicgstabWorkspace {
+  Positions r, rhat, p, v, y, s, z, t;
+};
+
 /// Preconditioned BiCGSTAB (van der Vorst) on the three columns together, each column with its
 /// own scalars and stopping test ‖R − K X‖ <= tolerance · ‖R‖. X holds the initial guess.
+SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Positions& R,
+                    Positions& X, double tolerance, int max_iterations, BicgstabWorkspace& ws);
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Positions& R,
                     Positions& X, double tolerance, int max_iterations);
 

@@ -136,6 +136,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
   std::vector<double> B_values;
   Positions c, rhs, X, AV;
   Ilu0 ilu;
+  BicgstabWorkspace workspace;
   DirectSolver direct;
 
   for (int k = 1; k <= o.iterations; ++k) {
@@ -167,7 +168,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     t0 = Clock::now();
     X = M.V;  // warm start from the current positions
     if (!use_direct) {
-      solve = bicgstab(K, ilu, rhs, X, o.solver_tolerance, o.solver_max_iterations);
+      solve = bicgstab(K, ilu, rhs, X, o.solver_tolerance, o.solver_max_iterations, workspace);
       if (!solve.ok) {
         X = M.V;
         use_direct = true;  // the robust path for this iteration
