@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -145,6 +146,10 @@ ModelBuilder morph_quad(const MorphQuadOptions& options) {
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.attributes["POSITION"] = b.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, TINYGLTF_TYPE_VEC3,
                                          TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["NORMAL"] = b.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, TINYGLTF_TYPE_VEC3,
+                                       TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["TANGENT"] = b.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1},
+                                        TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER);
   prim.indices = b.ushorts({0, 1, 2, 0, 2, 3}, TINYGLTF_TYPE_SCALAR, false,
                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   prim.targets.push_back(
@@ -365,6 +370,19 @@ std::optional<int> validate_gltf(const fs::path& file, std::string& report) {
     return -1;
   }
   return std::stoi(match[1]);
+}
+
+void require_valid_gltf(const fs::path& file) {
+  std::string report;
+  const std::optional<int> errors = validate_gltf(file, report);
+  if (!errors) {
+    WARN("glTF-Validator not run (" << report
+                                    << "); install it with "
+                                       "`cd tools && npm install --no-save gltf-validator`");
+    return;
+  }
+  INFO(report);
+  REQUIRE(*errors == 0);
 }
 
 }  // namespace sm::test

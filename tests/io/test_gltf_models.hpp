@@ -36,9 +36,10 @@ struct MorphQuadOptions {
   bool sparse_target = true;   ///< target 1 as a sparse accessor without buffer view
 };
 
-/// Unit quad at z = 0 under a node translated by (1, 2, 3). Target 0 lifts vertex 2 by (0, 0, 1);
-/// target 1 lifts vertex 3 by (0, 0, 2). Weights keys at t = 0, 1, 2: (0, 0), (1, 0.5), (0, 1)
-/// (CUBICSPLINE: the same values with zero tangents). Mesh default weights (0.5, 0).
+/// Unit quad at z = 0 (NORMAL (0, 0, 1), TANGENT (1, 0, 0, 1)) under a node translated by (1, 2,
+/// 3). Target 0 lifts vertex 2 by (0, 0, 1); target 1 lifts vertex 3 by (0, 0, 2). Weights keys at
+/// t = 0, 1, 2: (0, 0), (1, 0.5), (0, 1) (CUBICSPLINE: the same values with zero tangents). Mesh
+/// default weights (0.5, 0).
 ModelBuilder morph_quad(const MorphQuadOptions& options = {});
 
 /// Closed form of morph_quad's weights at time t.
@@ -69,5 +70,8 @@ struct ScratchDir {
 /// Runs tools/validate_gltf.js on `file`. Returns the number of errors (with the report in
 /// `report`), or nothing when node or the gltf-validator package is missing (`report` says why).
 std::optional<int> validate_gltf(const std::filesystem::path& file, std::string& report);
+
+/// Requires zero validator errors for `file`; WARNs and returns when the validator is unavailable.
+void require_valid_gltf(const std::filesystem::path& file);
 
 }  // namespace sm::test
