@@ -1,5 +1,6 @@
 #include "io/off.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -38,8 +39,9 @@ class OffParser {
     if (nv == 0) fail(line_, "no vertices (the vertex count is 0)");
     if (nf == 0) fail(line_, "no faces (the face count is 0)");
 
-    TriMesh mesh;
-    mesh.V.resize(nv, 3);
+    // The counts come from the file: allocate by what the text can hold, not by what they claim.
+    std::vector<double> positions;
+    positions.reserve(3 * std::min<size_t>(static_cast<size_t>(nv), text_.size() / 6));
     for (int i = 0; i < nv; ++i) {
       line = expect_line("vertices", nv, i);
       at = 0;
@@ -56,11 +58,11 @@ class OffParser {
         if (!std::isfinite(value)) {
           fail(line_, where() + " '" + std::string(token) + "' is not finite");
         }
-        mesh.V(i, c) = value;
+        positions.push_back(value);
       }
     }
     std::vector<int> tris;
-    tris.reserve(static_cast<size_t>(nf) * 3);
+    tris.reserve(3 * std::min<size_t>(static_cast<size_t>(nf), text_.size() / 8));
     std::vector<int> poly;
     for (int f = 0; f < nf; ++f) {
       line = expect_line("faces", nf, f);
@@ -97,6 +99,8 @@ class OffParser {
         tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
       }
     }
+    TriMesh mesh;
+    mesh.V = Eigen::Map<const Positions>(positions.data(), nv, 3);
     mesh.F =
         Eigen::Map<const Triangles>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
     return mesh;

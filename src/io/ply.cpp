@@ -295,7 +295,9 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
 
   const int64_t nv = ve.count;
   TriMesh mesh;
-  mesh.V.resize(static_cast<Eigen::Index>(nv), 3);
+  // The counts come from the file: allocate by what the data can hold, not by what they claim.
+  std::vector<double> positions;
+  positions.reserve(3 * std::min<size_t>(static_cast<size_t>(nv), data.size() / 3));
   std::vector<int> tris, poly;
   PlyBody body(data, header, name);
   int done = 0;
@@ -304,6 +306,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
     const int np = static_cast<int>(e.properties.size());
     for (int64_t item = 0; item < e.count; ++item) {
       std::array<uint8_t, 3> rgb{};
+      double xyz_value[3] = {0.0, 0.0, 0.0};
       for (int k = 0; k < np; ++k) {
         const PlyProperty& p = e.properties[k];
         if (!p.list) {
@@ -312,7 +315,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
             for (int c = 0; c < 3; ++c) {
               if (k == xyz[c]) {
                 if (!std::isfinite(value)) body.fail(e, item, p.name + " is not finite");
-                mesh.V(static_cast<Eigen::Index>(item), c) = value;
+                xyz_value[c] = value;
               }
               if (vertex_colors && k == vrgb[c]) rgb[c] = to_channel(value, p.type);
             }
@@ -348,6 +351,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
               "a face needs at least 3 corners, found " + std::to_string(static_cast<int64_t>(n)));
         }
       }
+      if (is_vertex) positions.insert(positions.end(), xyz_value, xyz_value + 3);
       if (is_vertex && vertex_colors) colors->vertex.push_back(rgb);
       if (is_face) {
         for (size_t k = 1; k + 1 < poly.size(); ++k) {
@@ -360,6 +364,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
     if (is_face) ++done;
     if (done == 2) break;  // later elements are not needed
   }
+  mesh.V = Eigen::Map<const Positions>(positions.data(), static_cast<Eigen::Index>(nv), 3);
   mesh.F = Eigen::Map<const Triangles>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
   return mesh;
 }

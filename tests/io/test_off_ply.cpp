@@ -144,6 +144,9 @@ TEST_CASE("malformed OFF: messages name the line, element and field", "[off][err
   CHECK(off_error(head + "0 1 0\n3 0 1 a\n") ==
         "bad.off:6: face 0: corner 3: vertex index 'a' is not an integer");
   CHECK(off_error(head + "0 1 0\n") == "bad.off: expected 1 faces, the file ends after 0");
+  // Counts are not trusted for allocation: a huge claim fails as a short file.
+  CHECK(off_error("OFF\n2000000000 2000000000 0\n0 0 0\n") ==
+        "bad.off: expected 2000000000 vertices, the file ends after 1");
 }
 
 TEST_CASE("ASCII PLY with extra properties, elements and colours", "[ply]") {
@@ -284,4 +287,14 @@ TEST_CASE("malformed PLY: messages name the header line or element, item and pro
         "bad.ply:13: face 0: a face needs at least 3 corners, found 2");
   CHECK(ply_error(header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n") ==
         "bad.ply:13: face 0: vertex_indices: the data ends early");
+  const std::string huge =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty double x\n"
+      "property double y\nproperty double z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  CHECK(ply_error(huge) == "bad.ply: vertex 0: x: the data ends early (binary, byte " +
+                               std::to_string(huge.size()) + ")");
+  CHECK(ply_error(header + "0 0 0\n1 0 0\n0 1 0\n3 0 x 2\n") ==
+        "bad.ply:13: face 0: vertex_indices 'x' is not an integer");
+  CHECK(ply_error(header + "0 0 0\n1 0 0\n0 1 0\nx 0 1 2\n") ==
+        "bad.ply:13: face 0: vertex_indices count 'x' is not an integer");
 }
