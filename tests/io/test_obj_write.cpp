@@ -91,6 +91,17 @@ TEST_CASE("new positions change only the v lines; quads stay quads", "[obj][writ
   CHECK(back.num_faces() == 2);  // written as the two quads that were read
 }
 
+TEST_CASE("a moved statement written on several lines becomes one line", "[obj][write]") {
+  const ObjFile f = parse_obj(
+      "v 0 0 \\\r\n0 1 # w\r\nv 1 0 0\r\nv 0 1 0\r\nvn 0 \\\r\n0 1 # up\r\nf 1//1 2//1 3//1\r\n",
+      "joined.obj");
+  CHECK(f.mesh.V(0, 2) == 0.0);
+  Positions V = f.mesh.V;
+  V(0, 0) = -1;
+  CHECK(format_obj(f, V) ==
+        "v -1 0 0 1 # w\r\nv 1 0 0\r\nv 0 1 0\r\nvn 0 0 1 # up\r\nf 1//1 2//1 3//1\r\n");
+}
+
 TEST_CASE("positions round-trip bit-exactly", "[obj][write]") {
   TriMesh m;
   m.V.resize(6, 3);
