@@ -38,18 +38,20 @@ class TriangleBvh {
   bool empty() const { return nodes_.empty(); }
 
  private:
-  struct Node {
-    Eigen::AlignedBox3d box;
-    int left = -1;   ///< child index, or -1 for a leaf
-    int right = -1;
-    int first = 0;   ///< leaf: first entry in order_
-    int count = 0;   ///< leaf: number of triangles
+  /// An inner node holds the boxes of its two children (floats rounded outwards), so that one
+  /// traversal step reads one cache line. Node 0 is the root; a mesh of at most 4 triangles
+  /// gets a root with one leaf and one empty child.
+  struct alignas(64) Node {
+    float lo[2][3];
+    float hi[2][3];
+    int child[2];  ///< >= 0: inner node index; < 0: leaf ~(first << 3 | count) over order_
   };
   void build(int node, int first, int count, std::vector<Vec3>& centroids);
   Positions V_;
   Triangles F_;
   std::vector<Node> nodes_;
-  std::vector<int> order_;  ///< triangle ids, leaves refer to ranges of it
+  std::vector<int> order_;     ///< triangle ids, leaves refer to ranges of it
+  std::vector<Vec3> corners_;  ///< 3 corners per entry of order_, contiguous for the leaves
 };
 
 }  // namespace sm

@@ -1,0 +1,164 @@
+#include "geometry/distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "mesh/errors.hpp"
+
+namespace sm {
+namespace {
+
+// Bounds on the subdivisions of one edge and one triangle, so that a single huge triangle in a
+// finely meshed model cannot ask for billions of samples.
+constexpr long kMaxEdgeSegments = 1 << 20;
+constexpr long kMaxFaceDivisions = 1 << 12;
+
+struct Partial {
+  double max = 0.0, sum = 0.0, sum2 = 0.0;
+  long count = 0;
+};
+
+long divisions(double length, double h, long cap) {
+  if (!(h > 0.0)) return 1;
+  return std::clamp(static_cast<long>(std::ceil(length / h)), 1L, cap);
+}
+
+// Which corners (bits 0–2) and edges k → k+1 (bits 3–5) each triangle samples: every vertex and
+// every undirected edge belongs to the first triangle (lowest index, then lowest corner) using it.
+std::vector<uint8_t> ownership(const TriMesh& A, bool edges) {
+  const int n = A.num_vertices(), m = A.num_triangles();
+  std::vector<uint8_t> owns(m, 0);
+  std::vector<uint8_t> seen(n, 0);
+  for (int t = 0; t < m; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (!seen[A.F(t, k)]) {
+        seen[A.F(t, k)] = 1;
+        owns[t] |= uint8_t(1u << k);
+      }
+  if (!edges) return owns;
+  std::vector<std::pair<uint64_t, int>> keys;
+  keys.reserve(static_cast<size_t>(m) * 3);
+  for (int t = 0; t < m; ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = static_cast<uint32_t>(A.F(t, k)), b = static_cast<uint32_t>(A.F(t, (k + 1) % 3));
+      if (a > b) std::swap(a, b);
+      keys.emplace_back((uint64_t(a) << 32) | b, 3 * t + k);
+    }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < keys.size(); ++i)
+    if (i == 0 || keys[i].first != keys[i - 1].first)
+      owns[keys[i].second / 3] |= uint8_t(8u << (keys[i].second % 3));
+  return owns;
+}
+
+}  // namespace
+
+DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
+                                 const DistanceOptions& options) {
+  validate_mesh(A, "one_sided_distance (A)");
+  if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
+    std::ostringstream msg;
+    msg << "DistanceOptions::spacing must be a positive number, not " << options.spacing;
+    throw ConfigError(msg.str());
+  }
+  DistanceStats stats;
+  const int m = A.num_triangles();
+  if (m == 0) return stats;
+  if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");
+
+  const double h = options.spacing * mean_edge_length(A);
+  const std::vector<uint8_t> owns = ownership(A, options.sample_edges);
+  std::vector<Partial> partial(m);
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, m, 256), [&](const tbb::blocked_range<int>& r) {
+    for (int t = r.begin(); t != r.end(); ++t) {
+      Partial& acc = partial[t];
+      const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
+      // Consecutive samples are close: d(q, B) ≤ d(q_prev, B) + |q − q_prev| bounds the search.
+      // The bound is widened a little for rounding; if it still misses, search without bound.
+      Vec3 prev = Vec3::Zero();
+      double prev_d = -1.0;
+      auto sample = [&](const Vec3& q) {
+        double bound2 = std::numeric_limits<double>::infinity();
+        if (prev_d >= 0.0) {
+          const double bound = (prev_d + (q - prev).norm()) * (1.0 + 1e-6);
+          bound2 = bound * bound;
+        }
+        SurfacePoint sp = B.closest(q, bound2);
+        if (sp.triangle < 0) sp = B.closest(q);
+        const double d = std::sqrt(sp.dist2);
+        acc.max = std::max(acc.max, d);
+        acc.sum += d;
+        acc.sum2 += sp.dist2;
+        ++acc.count;
+        prev = q;
+        prev_d = d;
+      };
+      for (int k = 0; k < 3; ++k)
+        if (owns[t] & (1u << k)) sample(p[k]);
+      for (int k = 0; k < 3; ++k) {
+        if (!(owns[t] & (8u << k))) continue;
+        const Vec3& a = p[k];
+        const Vec3 e = p[(k + 1) % 3] - a;
+        const long segments = divisions(e.norm(), h, kMaxEdgeSegments);
+        for (long j = 1; j < segments; ++j) sample(a + (double(j) / double(segments)) * e);
+      }
+      if (!options.sample_faces) continue;
+      const double longest =
+          std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+      const long n = divisions(longest, h, kMaxFaceDivisions);
+      if (n < 3) {
+        sample((p[0] + p[1] + p[2]) / 3.0);
+        continue;
+      }
+      // Interior lattice points (i, j, n − i − j) / n with all three coordinates ≥ 1/n, visited
+      // row by row in a serpentine order so that consecutive samples stay neighbours.
+      for (long i = 1; i <= n - 2; ++i) {
+        const long count = n - 1 - i;
+        for (long s = 0; s < count; ++s) {
+          const long j = (i % 2 == 1) ? 1 + s : count - s;
+          const double u = double(i) / double(n), v = double(j) / double(n);
+          sample(u * p[0] + v * p[1] + (1.0 - u - v) * p[2]);
+        }
+      }
+    }
+  });
+
+  double sum = 0.0, sum2 = 0.0;
+  for (const Partial& acc : partial) {
+    stats.max = std::max(stats.max, acc.max);
+    sum += acc.sum;
+    sum2 += acc.sum2;
+    stats.samples += acc.count;
+  }
+  stats.mean = sum / static_cast<double>(stats.samples);
+  stats.rms = std::sqrt(sum2 / static_cast<double>(stats.samples));
+
+  const Positions& VB = B.positions();
+  Eigen::RowVector3d lo = A.V.colwise().minCoeff(), hi = A.V.colwise().maxCoeff();
+  if (VB.rows() > 0) {
+    lo = lo.cwiseMin(VB.colwise().minCoeff());
+    hi = hi.cwiseMax(VB.colwise().maxCoeff());
+  }
+  const double diagonal = (hi - lo).norm();
+  if (diagonal > 0.0) {
+    stats.max_rel = stats.max / diagonal;
+    stats.mean_rel = stats.mean / diagonal;
+    stats.rms_rel = stats.rms / diagonal;
+  }
+  return stats;
+}
+
+double symmetric_hausdorff(const DistanceStats& a_to_b, const DistanceStats& b_to_a) {
+  return std::max(a_to_b.max, b_to_a.max);
+}
+
+}  // namespace sm
