@@ -65,7 +65,12 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
     };
 
     const int k = region_corner(here.region);
-    if (k >= 0) {
+    if (k < 0) {
+      // Inside the face: a point just inside a convex edge also projects into the face across
+      // it, which may be closer. Trying the three edge neighbours catches that case.
+      for (int e = 0; e < 3; ++e)
+        if (const int across = topo.triangle_neighbours[current][e]; across >= 0) consider(across);
+    } else {
       if (!is_edge(here.region)) {
         consider_fan(F(current, k));
       } else if (const int across = topo.triangle_neighbours[current][k]; across >= 0) {

@@ -8,8 +8,9 @@ namespace sm {
 
 /// Local closest-point search on `mesh` (positions V, triangles F, connectivity topo) for the
 /// query p, starting at triangle `start` (must be valid). At each step the closest point on the
-/// current triangle decides where to look next: inside the face, the walk stops; on an edge, the
-/// neighbour across it is tried; at a corner, every triangle around that vertex is tried. The walk
+/// current triangle decides where to look next: inside the face, the three edge neighbours are
+/// tried (a point just inside a convex edge projects into both faces); on an edge, the neighbour
+/// across it; at a corner, every triangle around that vertex. The walk
 /// moves to the best candidate while it is strictly closer and stops after `max_steps` moves.
 ///
 /// Returns true and the local minimum in `out` when the walk settled; false when it ran out of
