@@ -25,8 +25,8 @@ struct SyntheticConfig {
   int rings = 48;                      ///< "rings": segments along the tube, >= 1
   double radius = 0.5;                 ///< "radius": tube radius, > 0
   double length = 4.0;                 ///< "length": tube length, > 0
-  double bend = 120.0;                 ///< "bend": bend angle of the last frame in degrees, [0, 300]
-  double drift = 0.5;                  ///< "drift": slide amplitude in edge lengths, [0, 2]
+  double bend = 90.0;                  ///< "bend": bend angle of the last frame in degrees, [0, 300]
+  double drift = 0.6;                  ///< "drift": slide amplitude in edge lengths, [0, 2]
   int seed = 1;                        ///< "seed": seed of the drift field, >= 0
 };
 

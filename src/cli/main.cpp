@@ -1,0 +1,296 @@
+/// seqmassage: the command line. Parses arguments, runs the job of a config file with a progress
+/// display, and is the only place that catches exceptions, mapping them to exit codes.
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/config.hpp"
+#include "mesh/errors.hpp"
+#include "pipeline/report.hpp"
+#include "pipeline/sequence_job.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+enum ExitCode : int {
+  kOk = 0,
+  kInternal = 1,
+  kUsage = 2,  // usage and config errors
+  kInput = 3,
+  kIo = 4,
+  kProcessing = 5,
+  kInterrupted = 130,
+};
+
+constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
+
+Corrects texture swimming in a captured mesh sequence (Mesh Massage, paper section 3.1): every
+frame is optimized so that its triangles take the shapes of the template frame's while it stays
+on its own surface. What to do is described by the JSON config file (see README.md); paths in it
+are relative to the file's folder.
+
+Options:
+  -h, --help            print this help and exit
+      --version         print the version and exit
+      --threads N       worker threads (overrides "threads"; 0 = one per core)
+      --frames A:B[:STEP]
+                        process the frames with index A, A+STEP, ... before B (0-based, in
+                        natural order; B may be empty for "to the end"; a single index N is
+                        N:N+1); overrides "input.range"
+      --dry-run         check the config and every input, print what would be done, write
+                        nothing
+  -q, --quiet           no progress and no summary; errors and failed frames only
+
+Outputs (under "output.dir"): frames/<input name>.obj, distortion/<frame>.csv (with
+"per_triangle_csv"), summary.csv (one row per frame) and report.json.
+
+Exit status:
+  0    every frame was processed
+  1    internal error (a bug; please report it)
+  2    usage or config error: bad option, missing config file, invalid JSON, unknown key,
+       wrong type or out-of-range value, an output folder that would overwrite an input
+  3    input error: a malformed frame or template, frames with different vertex counts or faces
+  4    I/O error: a file or folder cannot be read or written
+  5    processing error: some frames failed numerically (reason in summary.csv and on stderr);
+       they are written unchanged and the other frames are complete
+  130  interrupted (Ctrl-C): the frames done so far are written and listed in summary.csv
+)";
+
+struct Args {
+  fs::path config;
+  std::optional<int> threads;
+  std::optional<std::string> frames;
+  bool dry_run = false;
+  bool quiet = false;
+};
+
+// nullopt: exit with `exit_code` (help, version, usage error).
+std::optional<Args> parse_args(int argc, char** argv, int& exit_code) {
+  Args args;
+  std::vector<std::string> positional;
+  auto usage = [&](const std::string& message) {
+    std::cerr << "seqmassage: " << message << "\nTry 'seqmassage --help'.\n";
+    exit_code = kUsage;
+    return std::nullopt;
+  };
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    std::optional<std::string> value;
+    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
+      value = a.substr(a.find('=') + 1);
+      a = a.substr(0, a.find('='));
+    }
+    auto take = [&]() -> std::optional<std::string> {
+      if (value) return value;
+      if (i + 1 < argc) return std::string(argv[++i]);
+      return std::nullopt;
+    };
+    if (a == "-h" || a == "--help") {
+      std::cout << kHelp;
+      exit_code = kOk;
+      return std::nullopt;
+    } else if (a == "--version") {
+      const nlohmann::json v = sm::version_info();
+      std::cout << "seqmassage " << v["seqmassage"].get<std::string>() << " (Eigen "
+                << v["eigen"].get<std::string>() << ", oneTBB " << v["onetbb"].get<std::string>()
+                << ", nlohmann-json " << v["nlohmann_json"].get<std::string>() << ", "
+                << v["compiler"].get<std::string>() << ")\n";
+      exit_code = kOk;
+      return std::nullopt;
+    } else if (a == "--threads") {
+      const auto v = take();
+      if (!v) return usage("--threads needs a value");
+      if (v->empty() || v->size() > 4 || v->find_first_not_of("0123456789") != std::string::npos)
+        return usage("--threads: expected an integer in [0, 4096], got \"" + *v + "\"");
+      const int n = std::stoi(*v);
+      if (n > 4096) return usage("--threads: expected an integer in [0, 4096], got \"" + *v + "\"");
+      args.threads = n;
+    } else if (a == "--frames") {
+      const auto v = take();
+      if (!v) return usage("--frames needs a value A:B[:STEP]");
+      args.frames = *v;
+    } else if (a == "--dry-run" && !value) {
+      args.dry_run = true;
+    } else if ((a == "-q" || a == "--quiet") && !value) {
+      args.quiet = true;
+    } else if (a == "--") {
+      for (++i; i < argc; ++i) positional.push_back(argv[i]);
+    } else if (a.size() > 1 && a[0] == '-') {
+      return usage("unknown option '" + std::string(argv[i]) + "'");
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (positional.empty()) return usage("missing the config file (seqmassage CONFIG.json)");
+  if (positional.size() > 1)
+    return usage("one config file only, got " + std::to_string(positional.size()));
+  args.config = positional[0];
+  std::error_code ec;
+  if (!fs::is_regular_file(args.config, ec))
+    return usage("config file '" + args.config.string() + "' " +
+                 (fs::exists(args.config, ec) ? "is not a file" : "does not exist"));
+  return args;
+}
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) {
+  g_interrupted.store(true);
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the program at once
+}
+
+std::string clock_text(double seconds) {
+  if (!(seconds >= 0) || seconds > 359999) return "--:--";
+  const long s = static_cast<long>(seconds + 0.5);
+  char buffer[32];
+  if (s >= 3600) std::snprintf(buffer, sizeof buffer, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else std::snprintf(buffer, sizeof buffer, "%ld:%02ld", s / 60, s % 60);
+  return buffer;
+}
+
+std::string fixed(double x, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", digits, x);
+  return buffer;
+}
+
+std::string shown(const fs::path& p) {
+  std::error_code ec;
+  const fs::path rel = fs::proximate(p, ec);
+  return ec ? p.string() : rel.string();
+}
+
+// Progress on stderr: a bar redrawn in place on a terminal, one line per frame otherwise.
+class Progress {
+ public:
+  Progress(bool quiet, bool terminal) : quiet_(quiet), terminal_(terminal) {}
+
+  void frame(const sm::FrameSummary& f, int done, int total, double elapsed) {
+    if (f.status == sm::FrameStatus::Failed) {
+      clear();
+      std::cerr << "seqmassage: frame " << f.frame << " (" << f.file
+                << ") failed, written unchanged: " << f.failure << "\n";
+    }
+    if (quiet_) return;
+    const double rate = elapsed > 0 ? done / elapsed : 0.0;
+    const double eta = rate > 0 ? (total - done) / rate : -1.0;
+    if (terminal_) {
+      const int width = 30;
+      const int filled = total > 0 ? width * done / total : width;
+      std::string bar(filled, '#');
+      bar += std::string(width - filled, '.');
+      std::cerr << "\r[" << bar << "] " << done << "/" << total << " frames  " << fixed(rate, 2)
+                << " frames/s  ETA " << clock_text(eta) << "   " << std::flush;
+      drawn_ = true;
+      if (done == total) clear();
+    } else {
+      std::cerr << "frame " << done << "/" << total << " " << f.file << ": "
+                << sm::status_name(f.status) << ", mean shear " << fixed(f.shear_before.mean, 4)
+                << " -> " << fixed(f.shear_after.mean, 4) << ", " << f.iterations
+                << " iterations, " << fixed(rate, 2) << " frames/s, ETA " << clock_text(eta)
+                << "\n";
+    }
+  }
+
+  void clear() {
+    if (drawn_) std::cerr << "\r" << std::string(79, ' ') << "\r" << std::flush;
+    drawn_ = false;
+  }
+
+ private:
+  bool quiet_;
+  bool terminal_;
+  bool drawn_ = false;
+};
+
+int run(const Args& args) {
+  sm::JobConfig config = sm::load_config(args.config);
+  if (args.threads) config.threads = *args.threads;
+  if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
+  const sm::SequencePlan plan = sm::plan_sequence_job(config);
+  if (args.dry_run) {
+    std::cout << sm::describe_plan(plan) << "dry run: nothing written\n";
+    return kOk;
+  }
+  if (!args.quiet) {
+    for (const std::string& w : plan.warnings) std::cerr << "seqmassage: warning: " << w << "\n";
+    std::cerr << "seqmassage: " << plan.selected.size() << " frames, template "
+              << plan.template_source << ", " << plan.threads << " threads\n";
+  }
+
+  Progress progress(args.quiet, ::isatty(STDERR_FILENO) == 1);
+  sm::RunHooks hooks;
+  hooks.cancel = &g_interrupted;
+  hooks.progress = [&](const sm::FrameSummary& f, int done, int total, double elapsed) {
+    progress.frame(f, done, total, elapsed);
+  };
+  std::signal(SIGINT, on_interrupt);
+  const sm::SequenceResult result = sm::run_sequence_job(plan, hooks);
+  std::signal(SIGINT, SIG_DFL);
+  progress.clear();
+
+  const fs::path& out = plan.config.output.dir;
+  if (!args.quiet) {
+    double before = 0, after = 0;
+    for (const sm::FrameSummary& f : result.frames) {
+      before += f.shear_before.mean;
+      after += f.shear_after.mean;
+    }
+    const double n = std::max<size_t>(1, result.frames.size());
+    std::cerr << "seqmassage: " << result.frames.size() << " frames in "
+              << fixed(result.seconds, 1) << " s (" << result.failed << " failed), mean shear "
+              << fixed(before / n, 4) << " -> " << fixed(after / n, 4) << "\n";
+    std::cout << "results: " << shown(out) << "/ (frames/, "
+              << (plan.config.output.per_triangle_csv ? "distortion/, " : "")
+              << "summary.csv, report.json)\n";
+  }
+  if (result.interrupted) {
+    std::cerr << "seqmassage: interrupted after " << result.frames.size() << " of "
+              << plan.selected.size() << " frames; they are written and listed in "
+              << shown(out / "summary.csv") << "\n";
+    return kInterrupted;
+  }
+  if (result.failed > 0) {
+    std::cerr << "seqmassage: " << result.failed << " of " << result.frames.size()
+              << " frames failed (see " << shown(out / "summary.csv") << ")\n";
+    return kProcessing;
+  }
+  return kOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int exit_code = kOk;
+  const std::optional<Args> args = parse_args(argc, argv, exit_code);
+  if (!args) return exit_code;
+  try {
+    return run(*args);
+  } catch (const sm::ConfigError& e) {
+    const std::string what = e.what();  // command-line options name themselves
+    std::cerr << "seqmassage: " << (what.rfind("--", 0) == 0 ? "" : args->config.string() + ": ")
+              << what << "\n";
+    return kUsage;
+  } catch (const sm::InputError& e) {
+    std::cerr << "seqmassage: input error: " << e.what() << "\n";
+    return kInput;
+  } catch (const sm::IoError& e) {
+    std::cerr << "seqmassage: I/O error: " << e.what() << "\n";
+    return kIo;
+  } catch (const sm::SolverError& e) {
+    std::cerr << "seqmassage: processing error: " << e.what() << "\n";
+    return kProcessing;
+  } catch (const std::exception& e) {
+    std::cerr << "seqmassage: internal error: " << e.what() << "\n";
+    return kInternal;
+  }
+}

@@ -1,0 +1,343 @@
+#include "pipeline/sequence_job.hpp"
+
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <set>
+#include <sstream>
+
+#include "geometry/bvh.hpp"
+#include "io/atomic_file.hpp"
+#include "io/frame_folder.hpp"
+#include "io/mesh_file.hpp"
+#include "io/obj.hpp"
+#include "massage/reference.hpp"
+#include "mesh/errors.hpp"
+#include "mesh/mesh_check.hpp"
+#include "pipeline/report.hpp"
+
+namespace sm {
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+std::string frame_label(const SequencePlan& plan, int index) {
+  return "frame " + std::to_string(index) + " (" + plan.frames[index].filename().string() + ")";
+}
+
+// Why `frame` cannot be massaged with the template's connectivity, or "" if it can.
+std::string connectivity_mismatch(const SequencePlan& plan, int index, const TriMesh& frame) {
+  const TriMesh& t = plan.templ;
+  const std::string who = frame_label(plan, index);
+  const std::string like = ", but the template, " + plan.template_source + ", has ";
+  if (frame.num_vertices() != t.num_vertices())
+    return who + ": " + std::to_string(frame.num_vertices()) + " vertices" + like +
+           std::to_string(t.num_vertices());
+  if (frame.num_triangles() != t.num_triangles())
+    return who + ": " + std::to_string(frame.num_triangles()) + " triangles" + like +
+           std::to_string(t.num_triangles());
+  for (int k = 0; k < t.num_triangles(); ++k) {
+    if (frame.F.row(k) == t.F.row(k)) continue;
+    auto corners = [](const Triangles& F, int k) {
+      return std::to_string(F(k, 0) + 1) + " " + std::to_string(F(k, 1) + 1) + " " +
+             std::to_string(F(k, 2) + 1);
+    };
+    return who + ": faces differ from the template's, " + plan.template_source + ": triangle " +
+           std::to_string(k + 1) + " has vertices " + corners(frame.F, k) + ", the template's " +
+           corners(t.F, k) + " (1-based)";
+  }
+  return "";
+}
+
+// Reads every selected frame (a few at a time) and throws for the first one, in frame order,
+// whose connectivity differs from the template's.
+void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
+  std::vector<std::string> problems(plan.selected.size());
+  arena.execute([&] {
+    tbb::parallel_for(size_t{0}, plan.selected.size(), [&](size_t k) {
+      const int index = plan.selected[k];
+      if (index == plan.template_frame) return;
+      problems[k] = connectivity_mismatch(plan, index, read_obj(plan.frames[index]).mesh);
+    });
+  });
+  for (const std::string& problem : problems)
+    if (!problem.empty()) throw InputError(problem);
+}
+
+// Refuses an output file that is one of the inputs.
+void check_outputs(const SequencePlan& plan) {
+  const JobConfig& c = plan.config;
+  std::set<fs::path> inputs;
+  auto canonical = [](const fs::path& p) { return fs::weakly_canonical(p).lexically_normal(); };
+  for (int index : plan.selected) inputs.insert(canonical(plan.frames[index]));
+  if (plan.template_frame >= 0) inputs.insert(canonical(plan.frames[plan.template_frame]));
+  if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
+  std::vector<fs::path> outputs = {c.output.dir / "summary.csv", c.output.dir / "report.json"};
+  for (int index : plan.selected) {
+    outputs.push_back(c.output.dir / "frames" / plan.frames[index].filename());
+    if (c.output.per_triangle_csv) {
+      fs::path csv = plan.frames[index].filename();
+      outputs.push_back(c.output.dir / "distortion" / csv.replace_extension(".csv"));
+    }
+  }
+  for (const fs::path& out : outputs)
+    if (inputs.count(canonical(out)))
+      throw ConfigError("output.dir: writing " + out.string() +
+                        " would overwrite an input file; choose another output folder");
+}
+
+std::vector<int> select_frames(const FrameRange& range, int count) {
+  if (range.start >= count)
+    throw ConfigError("input.range.start: " + std::to_string(range.start) +
+                      " is beyond the last frame (the sequence has " + std::to_string(count) +
+                      " frames, 0 to " + std::to_string(count - 1) + ")");
+  const int stop = range.stop ? std::min(*range.stop, count) : count;
+  std::vector<int> selected;
+  for (int i = range.start; i < stop; i += range.step) selected.push_back(i);
+  if (selected.empty())
+    throw ConfigError("input.range: selects no frames (" + format_frame_range(range) + ")");
+  return selected;
+}
+
+// One frame in flight through the pipeline.
+struct Work {
+  int index = 0;
+  std::string bytes;  // the input file as read
+  bool unchanged = false;
+  std::string obj;    // the corrected frame (unless unchanged)
+  std::string csv;    // per-triangle distortion (if asked)
+  FrameSummary summary;
+};
+
+void process_frame(const SequencePlan& plan, Work& w) {
+  const auto t0 = Clock::now();
+  const JobConfig& c = plan.config;
+  const fs::path& path = plan.frames[w.index];
+  const ObjFile file = parse_obj(w.bytes, path.string());
+  if (std::string problem = connectivity_mismatch(plan, w.index, file.mesh); !problem.empty())
+    throw InputError(problem);
+
+  FrameSummary& s = w.summary;
+  s.frame = w.index;
+  s.file = path.filename().string();
+  s.vertices = file.mesh.num_vertices();
+  s.triangles = file.mesh.num_triangles();
+  const Triangles& F = plan.templ.F;
+  const Eigen::VectorXd before = shear_distortion(plan.templ.V, file.mesh.V, F);
+
+  Positions V = file.mesh.V;
+  if (w.index == plan.template_frame && !c.templ.optimize) {
+    s.status = FrameStatus::Template;
+    w.unchanged = true;
+  } else {
+    const std::string name = frame_label(plan, w.index);
+    const Reference reference(file.mesh, c.massage.samples, name.c_str(),
+                              plan.massager->shared_topology());
+    const MassageResult result = plan.massager->run(file.mesh.V, reference);
+    s.iterations = static_cast<int>(result.iterations.size());
+    if (!result.ok) {
+      s.status = FrameStatus::Failed;
+      s.failure = result.failure;
+      w.unchanged = true;
+    } else {
+      s.status = FrameStatus::Optimized;
+      s.folded_triangles = result.folded_triangles;
+      V = result.V;
+      w.obj = format_obj(file, V);
+      const TriMesh output{V, F};
+      s.out_to_in = one_sided_distance(output, reference.bvh());
+      s.in_to_out = one_sided_distance(file.mesh, TriangleBvh(output));
+    }
+  }
+  const Eigen::VectorXd after = w.unchanged ? before : shear_distortion(plan.templ.V, V, F);
+  s.shear_before = summarize_distortion(before);
+  s.shear_after = summarize_distortion(after);
+  if (c.output.per_triangle_csv) w.csv = format_distortion_csv(before, after);
+
+  if (plan.synthetic) {
+    const Positions clean = synthetic_frame(*plan.synthetic, w.index).clean;
+    const double unit = mean_edge_length(plan.templ);
+    const Eigen::VectorXd e_in = (file.mesh.V - clean).rowwise().norm() / unit;
+    const Eigen::VectorXd e_out = (V - clean).rowwise().norm() / unit;
+    s.ground_truth = GroundTruthError{e_in.mean(), e_in.maxCoeff(), e_out.mean(), e_out.maxCoeff()};
+  }
+  s.seconds = seconds_since(t0);
+}
+
+}  // namespace
+
+const char* status_name(FrameStatus status) {
+  switch (status) {
+    case FrameStatus::Optimized: return "optimized";
+    case FrameStatus::Template: return "template";
+    case FrameStatus::Failed: return "failed";
+  }
+  return "";
+}
+
+SequencePlan plan_sequence_job(const JobConfig& config) {
+  SequencePlan plan;
+  plan.config = config;
+  const JobConfig& c = plan.config;
+  plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
+  plan.frames_in_flight = c.frames_in_flight > 0 ? c.frames_in_flight : 2 * plan.threads;
+
+  if (c.input.synthetic) {
+    plan.synthetic = make_synthetic_sequence(*c.input.synthetic);
+    plan.input_dir = c.output.dir / "input";
+    plan.ground_truth_dir = c.output.dir / "ground_truth";
+    for (int t = 0; t < plan.synthetic->config.frames; ++t)
+      plan.frames.push_back(plan.input_dir / synthetic_frame_name(*plan.synthetic, t));
+  } else {
+    plan.input_dir = c.input.frames;
+    plan.frames = list_frames(plan.input_dir, ".obj");
+  }
+  const int count = static_cast<int>(plan.frames.size());
+  plan.selected = select_frames(c.input.range, count);
+
+  if (c.templ.mesh.empty()) {
+    if (c.templ.frame >= count)
+      throw ConfigError("template.frame: " + std::to_string(c.templ.frame) +
+                        " is out of range (the sequence has " + std::to_string(count) +
+                        " frames, 0 to " + std::to_string(count - 1) + ")");
+    plan.template_frame = c.templ.frame;
+    plan.template_source = frame_label(plan, plan.template_frame);
+    if (plan.synthetic)
+      plan.templ = TriMesh{synthetic_frame(*plan.synthetic, plan.template_frame).drifted,
+                           plan.synthetic->F};
+    else
+      plan.templ = read_obj(plan.frames[plan.template_frame]).mesh;
+  } else {
+    plan.template_source = c.templ.mesh.filename().string();
+    plan.templ = read_mesh(c.templ.mesh);
+  }
+  plan.massager = std::make_shared<const Massager>(plan.templ, c.massage,
+                                                   plan.template_source.c_str());
+
+  const MeshReport report = check_mesh(plan.templ, plan.massager->topology());
+  if (!report.ok_for_optimization())
+    plan.warnings.push_back("template (" + plan.template_source + "): " + report.describe());
+  if (const int fallback = plan.massager->weights().fallback_vertices; fallback > 0)
+    plan.warnings.push_back("template (" + plan.template_source + "): " + std::to_string(fallback) +
+                            " vertices with degenerate corners use uniform weights");
+  if (c.input.range.stop && *c.input.range.stop > count)
+    plan.warnings.push_back("input.range.stop " + std::to_string(*c.input.range.stop) +
+                            " is past the last frame; the sequence has " + std::to_string(count));
+
+  if (!plan.synthetic) {
+    tbb::task_arena arena(plan.threads);
+    check_frames(plan, arena);
+  }
+  check_outputs(plan);
+  return plan;
+}
+
+std::string describe_plan(const SequencePlan& plan) {
+  const JobConfig& c = plan.config;
+  std::ostringstream s;
+  const int count = static_cast<int>(plan.frames.size());
+  s << "job: sequence\n";
+  if (plan.synthetic) {
+    const SyntheticConfig& g = plan.synthetic->config;
+    s << "input: synthetic bending tube, " << g.frames << " frames of "
+      << plan.templ.num_vertices() << " vertices, generated into " << plan.input_dir.string()
+      << " (ground truth in " << plan.ground_truth_dir.string() << ")\n";
+  } else {
+    s << "input: " << count << " OBJ frames in " << plan.input_dir.string() << "\n";
+  }
+  s << "frames: " << plan.selected.size() << " selected (" << format_frame_range(c.input.range)
+    << "): " << plan.frames[plan.selected.front()].filename().string();
+  if (plan.selected.size() > 1) s << " ... " << plan.frames[plan.selected.back()].filename().string();
+  s << "\n";
+  s << "template: " << plan.template_source << ", " << plan.templ.num_vertices() << " vertices, "
+    << plan.templ.num_triangles() << " triangles";
+  if (plan.template_frame >= 0)
+    s << (c.templ.optimize ? "; optimized like the others" : "; written unchanged");
+  s << "\n";
+  const nlohmann::json m = to_json(c)["massage"];
+  const std::string mu = m["mu"].is_string() ? m["mu"].get<std::string>() : m["mu"].dump();
+  s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
+    << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>()
+    << ", solver " << m["solver"].get<std::string>() << "\n";
+  s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
+  s << "output: " << c.output.dir.string() << "\n";
+  s << "  frames/<name>.obj (" << plan.selected.size() << " files)\n";
+  if (c.output.per_triangle_csv)
+    s << "  distortion/<name>.csv (" << plan.selected.size() << " files)\n";
+  s << "  summary.csv, report.json\n";
+  for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
+  return s.str();
+}
+
+SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks) {
+  const auto t0 = Clock::now();
+  const JobConfig& c = plan.config;
+  const fs::path& out = c.output.dir;
+  SequenceResult result;
+  result.warnings = plan.warnings;
+  if (plan.synthetic) write_synthetic_sequence(*plan.synthetic, plan.input_dir, plan.ground_truth_dir);
+  for (const fs::path& dir : {out, out / "frames", out / "distortion"}) remove_stale_temporaries(dir);
+
+  const size_t total = plan.selected.size();
+  size_t next = 0;
+  tbb::task_arena arena(plan.threads);
+  arena.execute([&] {
+    tbb::parallel_pipeline(
+        static_cast<size_t>(plan.frames_in_flight),
+        tbb::make_filter<void, std::shared_ptr<Work>>(
+            tbb::filter_mode::serial_in_order,
+            [&](tbb::flow_control& fc) -> std::shared_ptr<Work> {
+              if (next < total && hooks.cancel && hooks.cancel->load()) result.interrupted = true;
+              if (next >= total || result.interrupted) {
+                fc.stop();
+                return nullptr;
+              }
+              auto w = std::make_shared<Work>();
+              w->index = plan.selected[next++];
+              w->bytes = read_file(plan.frames[w->index]);
+              return w;
+            }) &
+            tbb::make_filter<std::shared_ptr<Work>, std::shared_ptr<Work>>(
+                tbb::filter_mode::parallel,
+                [&](std::shared_ptr<Work> w) {
+                  process_frame(plan, *w);
+                  return w;
+                }) &
+            tbb::make_filter<std::shared_ptr<Work>, void>(
+                tbb::filter_mode::serial_in_order, [&](std::shared_ptr<Work> w) {
+                  const fs::path name = plan.frames[w->index].filename();
+                  write_file_atomic(out / "frames" / name, w->unchanged ? w->bytes : w->obj);
+                  if (c.output.per_triangle_csv)
+                    write_file_atomic(out / "distortion" / fs::path(name).replace_extension(".csv"),
+                                      w->csv);
+                  const FrameSummary& s = w->summary;
+                  const std::string who = frame_label(plan, w->index);
+                  if (s.status == FrameStatus::Failed) {
+                    ++result.failed;
+                    result.warnings.push_back(who + " failed, written unchanged: " + s.failure);
+                  }
+                  if (s.folded_triangles > 0)
+                    result.warnings.push_back(who + ": " + std::to_string(s.folded_triangles) +
+                                              " triangles folded over the input surface");
+                  result.frames.push_back(std::move(w->summary));
+                  if (hooks.progress)
+                    hooks.progress(result.frames.back(), static_cast<int>(result.frames.size()),
+                                   static_cast<int>(total), seconds_since(t0));
+                }));
+  });
+  result.seconds = seconds_since(t0);
+  write_file_atomic(out / "summary.csv", format_summary_csv(result.frames, c.output.timings));
+  write_file_atomic(out / "report.json", make_report(plan, result).dump(2) + "\n");
+  return result;
+}
+
+}  // namespace sm

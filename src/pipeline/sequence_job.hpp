@@ -1,0 +1,107 @@
+#pragma once
+/// The sequence job (paper §3.1): every frame of a mesh sequence is massaged towards the triangle
+/// shapes of a template frame while it stays on its own surface, streamed through a bounded TBB
+/// pipeline (read in order → optimize and measure in parallel → write in order).
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/distance.hpp"
+#include "geometry/shear.hpp"
+#include "io/config.hpp"
+#include "massage/massage.hpp"
+#include "pipeline/synthetic.hpp"
+
+namespace sm {
+
+/// What happened to a frame.
+enum class FrameStatus {
+  Optimized,  ///< "optimized": massaged and written with its new positions
+  Template,   ///< "template": the template frame, written unchanged (byte for byte)
+  Failed,     ///< "failed": numerical failure; written unchanged, the reason in `failure`
+};
+
+/// Distances of the synthetic sequence's vertices to their ground-truth positions, in units of
+/// the template's mean edge length.
+struct GroundTruthError {
+  double mean_before = 0.0, max_before = 0.0;  ///< the input (drifted) frame
+  double mean_after = 0.0, max_after = 0.0;    ///< the output frame
+};
+
+/// One row of summary.csv.
+struct FrameSummary {
+  int frame = 0;     ///< index in the natural order of the input frames
+  std::string file;  ///< input file name
+  int vertices = 0;
+  int triangles = 0;
+  DistortionSummary shear_before;  ///< eq. 8 against the original template, input frame
+  DistortionSummary shear_after;   ///< the same for the output frame
+  DistanceStats out_to_in;         ///< output frame sampled, to the input frame's surface
+  DistanceStats in_to_out;         ///< input frame sampled, to the output frame's surface
+  int iterations = 0;              ///< outer iterations run
+  double seconds = 0.0;            ///< optimization and measures of this frame
+  FrameStatus status = FrameStatus::Optimized;
+  std::string failure;             ///< why the frame failed (status Failed)
+  int folded_triangles = 0;        ///< triangles of the output folded over the input surface
+  std::optional<GroundTruthError> ground_truth;  ///< synthetic input only
+};
+
+/// Everything a run needs, checked: built by plan_sequence_job without writing anything.
+struct SequencePlan {
+  JobConfig config;
+  std::filesystem::path input_dir;             ///< where the frames are read from
+  std::vector<std::filesystem::path> frames;   ///< every input frame, natural order
+  std::vector<int> selected;                   ///< indices of the frames to process, in order
+  std::optional<SyntheticSequence> synthetic;  ///< generated into input_dir when run
+  std::filesystem::path ground_truth_dir;      ///< synthetic only: the clean frames
+  int template_frame = -1;                     ///< index of the template frame, -1 for a mesh
+  std::string template_source;                 ///< e.g. "frame 0 (frame_0000.obj)"
+  TriMesh templ;                               ///< the original template: weights and shear
+  std::shared_ptr<const Massager> massager;    ///< built once from the template
+  int threads = 1;                             ///< resolved worker threads
+  int frames_in_flight = 2;                    ///< resolved pipeline tokens
+  std::vector<std::string> warnings;
+};
+
+/// Result of a run, the frames in order.
+struct SequenceResult {
+  std::vector<FrameSummary> frames;
+  std::vector<std::string> warnings;
+  int failed = 0;
+  bool interrupted = false;  ///< stopped by RunHooks::cancel before every frame was done
+  double seconds = 0.0;      ///< wall time of the whole run
+};
+
+struct RunHooks {
+  /// Called after each frame is written, in frame order, from one thread at a time.
+  std::function<void(const FrameSummary& frame, int done, int total, double elapsed_seconds)>
+      progress;
+  /// When it becomes true, no further frame is started; frames in flight are finished and
+  /// written, then summary.csv and report.json record the interruption.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// Checks the config and every input before anything runs: lists the frames, reads every selected
+/// frame (in parallel, in a bounded way) and compares its vertex count and faces with the
+/// template's, builds the template's Massager, and refuses an output folder that would overwrite
+/// an input. Throws ConfigError, InputError (naming the frame and the counts) or IoError. Writes
+/// nothing.
+SequencePlan plan_sequence_job(const JobConfig& config);
+
+/// What a run of `plan` would do, several lines of text (for --dry-run).
+std::string describe_plan(const SequencePlan& plan);
+
+/// Runs the job: writes the synthetic input (if any), then frames/<name>.obj,
+/// distortion/<name>.csv (if asked), summary.csv and report.json under config.output.dir, each file
+/// atomically. A frame's numerical failure is recorded in the result, not thrown. Same plan, same
+/// output bytes (apart from timings), whatever the number of threads.
+SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks = {});
+
+/// The column value of a status: "optimized", "template", "failed".
+const char* status_name(FrameStatus status);
+
+}  // namespace sm

@@ -1,0 +1,167 @@
+#include "pipeline/synthetic.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "io/atomic_file.hpp"
+#include "io/csv.hpp"
+#include "mesh/errors.hpp"
+#include "mesh/primitives.hpp"
+
+namespace sm {
+namespace {
+
+constexpr int kWaves = 6;
+
+// Uniform double in [lo, hi) from a 64-bit generator: unlike std::uniform_real_distribution, the
+// same on every standard library.
+double uniform(std::mt19937_64& rng, double lo, double hi) {
+  return lo + (hi - lo) * static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+struct Wave {
+  int k_around;      // whole cycles around the tube (the field is periodic in the angle)
+  double k_along;    // cycles along the tube
+  double phase;      // radians
+  double speed;      // cycles over the whole sequence
+  double a_around;   // amplitude factors of the two tangential directions
+  double a_along;
+};
+
+std::vector<Wave> make_waves(int seed) {
+  std::mt19937_64 rng(static_cast<uint64_t>(seed) * 0x9E3779B97F4A7C15ull + 1);
+  std::vector<Wave> waves;
+  const double norm = 1.0 / std::sqrt(static_cast<double>(kWaves));
+  for (int w = 0; w < kWaves; ++w) {
+    Wave wave;
+    wave.k_around = 2 + static_cast<int>(rng() % 3);
+    wave.k_along = uniform(rng, 1.5, 4.0);
+    wave.phase = uniform(rng, 0.0, 2.0 * M_PI);
+    wave.speed = uniform(rng, 0.5, 1.5);
+    wave.a_around = norm * uniform(rng, -1.0, 1.0);
+    wave.a_along = norm * uniform(rng, -1.0, 1.0);
+    waves.push_back(wave);
+  }
+  return waves;
+}
+
+// Point at angle theta and length s on the tube bent with curvature kappa: its centre line is a
+// circular arc in the x-z plane starting at the origin along +z, curving towards -x.
+Vec3 bent_point(double theta, double s, double r, double kappa) {
+  const double ks = kappa * s;
+  const double cx = kappa == 0.0 ? 0.0 : -2.0 * std::sin(0.5 * ks) * std::sin(0.5 * ks) / kappa;
+  const double cz = kappa == 0.0 ? s : std::sin(ks) / kappa;
+  const double c = r * std::cos(theta);
+  return Vec3(cx + c * std::cos(ks), r * std::sin(theta), cz + c * std::sin(ks));
+}
+
+}  // namespace
+
+SyntheticSequence make_synthetic_sequence(const SyntheticConfig& config) {
+  if (config.frames < 2 || config.segments < 3 || config.rings < 1 || !(config.radius > 0.0) ||
+      !(config.length > 0.0))
+    throw ConfigError("input.synthetic: needs frames >= 2, segments >= 3, rings >= 1 and a "
+                      "positive radius and length");
+  if (config.bend * M_PI / 180.0 * config.radius >= config.length)
+    throw ConfigError("input.synthetic.bend: the tube would fold onto itself (bend in radians "
+                      "times radius must stay below length)");
+  SyntheticSequence seq;
+  seq.config = config;
+  const int nu = config.segments;
+  seq.rest = make_cylinder(nu, config.rings, config.radius, config.length);
+  seq.F = seq.rest.F;
+  seq.uv.resize((nu + 1) * (config.rings + 1), 2);
+  for (int j = 0; j <= config.rings; ++j)
+    for (int i = 0; i <= nu; ++i)
+      seq.uv.row(j * (nu + 1) + i) << static_cast<double>(i) / nu,
+          static_cast<double>(j) / config.rings;
+  seq.F_uv.resize(seq.F.rows(), 3);
+  for (int t = 0; t < seq.F.rows(); ++t) {
+    bool seam = false;  // the triangle joins the last column of vertices to the first
+    for (int c = 0; c < 3; ++c) seam |= seq.F(t, c) % nu == nu - 1;
+    for (int c = 0; c < 3; ++c) {
+      const int v = seq.F(t, c);
+      const int i = v % nu, j = v / nu;
+      seq.F_uv(t, c) = j * (nu + 1) + (seam && i == 0 ? nu : i);
+    }
+  }
+  return seq;
+}
+
+SyntheticFrame synthetic_frame(const SyntheticSequence& seq, int t) {
+  const SyntheticConfig& c = seq.config;
+  if (t < 0 || t >= c.frames)
+    throw InputError("synthetic frame " + std::to_string(t) + " does not exist (" +
+                     std::to_string(c.frames) + " frames)");
+  const double tau = static_cast<double>(t) / (c.frames - 1);
+  const double kappa = c.bend * M_PI / 180.0 * 0.5 * (1.0 - std::cos(M_PI * tau)) / c.length;
+  const double amplitude = c.drift * (c.length / c.rings) * std::sin(0.5 * M_PI * tau);
+  const std::vector<Wave> waves = make_waves(c.seed);
+  const int nu = c.segments;
+  const int n = seq.rest.num_vertices();
+  SyntheticFrame frame;
+  frame.clean.resize(n, 3);
+  frame.drifted.resize(n, 3);
+  for (int v = 0; v < n; ++v) {
+    const double theta = 2.0 * M_PI * (v % nu) / nu;
+    const double s = c.length * (v / nu) / c.rings;
+    double d_around = 0.0, d_along = 0.0;  // arc lengths
+    for (const Wave& w : waves) {
+      const double arg = w.k_around * theta + 2.0 * M_PI * (w.k_along * s / c.length + w.speed * tau) +
+                         w.phase;
+      d_around += w.a_around * std::sin(arg);
+      d_along += w.a_along * std::sin(arg);
+    }
+    const double window = amplitude * std::sin(M_PI * s / c.length);
+    frame.clean.row(v) = bent_point(theta, s, c.radius, kappa).transpose();
+    frame.drifted.row(v) =
+        bent_point(theta + window * d_around / c.radius, s + window * d_along, c.radius, kappa)
+            .transpose();
+  }
+  return frame;
+}
+
+std::string synthetic_frame_name(const SyntheticSequence& seq, int t) {
+  std::string digits = std::to_string(t);
+  const size_t width = std::max<size_t>(4, std::to_string(seq.config.frames - 1).size());
+  if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
+  return "frame_" + digits + ".obj";
+}
+
+std::string format_synthetic_obj(const SyntheticSequence& seq, const Positions& V,
+                                 const std::string& comment) {
+  std::string out = "# " + comment + "\ng tube\n";
+  out.reserve(out.size() + 40 * (V.rows() + seq.uv.rows() + seq.F.rows()));
+  for (int v = 0; v < V.rows(); ++v)
+    out += "v " + format_number(V(v, 0)) + " " + format_number(V(v, 1)) + " " +
+           format_number(V(v, 2)) + "\n";
+  for (int k = 0; k < seq.uv.rows(); ++k)
+    out += "vt " + format_number(seq.uv(k, 0)) + " " + format_number(seq.uv(k, 1)) + "\n";
+  for (int t = 0; t < seq.F.rows(); ++t) {
+    out += "f";
+    for (int c = 0; c < 3; ++c)
+      out += " " + std::to_string(seq.F(t, c) + 1) + "/" + std::to_string(seq.F_uv(t, c) + 1);
+    out += "\n";
+  }
+  return out;
+}
+
+int write_synthetic_sequence(const SyntheticSequence& seq, const std::filesystem::path& drifted_dir,
+                             const std::filesystem::path& clean_dir) {
+  const int frames = seq.config.frames;
+  for (int t = 0; t < frames; ++t) {
+    const SyntheticFrame frame = synthetic_frame(seq, t);
+    const std::string name = synthetic_frame_name(seq, t);
+    const std::string what = "seqmassage synthetic bending tube, frame " + std::to_string(t) +
+                             " of " + std::to_string(frames);
+    write_file_atomic(drifted_dir / name,
+                      format_synthetic_obj(seq, frame.drifted, what + ", drifted"));
+    write_file_atomic(clean_dir / name,
+                      format_synthetic_obj(seq, frame.clean, what + ", clean (ground truth)"));
+  }
+  return frames;
+}
+
+}  // namespace sm

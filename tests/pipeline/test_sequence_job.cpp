@@ -1,0 +1,237 @@
+// The sequence job end to end on small generated sequences: outputs, determinism across thread
+// counts, the template frame, checks of the inputs before anything is written, cancellation.
+#include <catch2/catch.hpp>
+#include <fstream>
+
+#include "io/atomic_file.hpp"
+#include "io/obj.hpp"
+#include "mesh/errors.hpp"
+#include "pipeline/report.hpp"
+#include "pipeline/sequence_job.hpp"
+#include "pipeline/synthetic.hpp"
+#include "pipeline/temp_folder.hpp"
+
+using namespace sm;
+namespace fs = std::filesystem;
+
+namespace {
+
+SyntheticConfig tube(int frames = 5, int segments = 12) {
+  SyntheticConfig c;
+  c.frames = frames;
+  c.segments = segments;
+  c.rings = 10;
+  return c;
+}
+
+// A folder of drifted frames under `dir`/in and a config reading it, writing to `dir`/out.
+JobConfig folder_job(const fs::path& dir, const SyntheticConfig& frames = tube()) {
+  write_synthetic_sequence(make_synthetic_sequence(frames), dir / "in", dir / "gt");
+  JobConfig c;
+  c.input.frames = dir / "in";
+  c.output.dir = dir / "out";
+  c.output.per_triangle_csv = true;
+  c.output.timings = false;
+  c.massage.iterations = 8;
+  c.threads = 2;
+  return c;
+}
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a sequence job writes every documented output") {
+  test::TempFolder dir("job_outputs");
+  const JobConfig c = folder_job(dir.path());
+  const SequencePlan plan = plan_sequence_job(c);
+  CHECK(plan.selected == std::vector<int>{0, 1, 2, 3, 4});
+  CHECK(plan.template_frame == 0);
+  std::vector<int> done;
+  RunHooks hooks;
+  hooks.progress = [&](const FrameSummary& f, int n, int total, double) {
+    CHECK(total == 5);
+    CHECK(f.frame == n - 1);
+    done.push_back(n);
+  };
+  const SequenceResult r = run_sequence_job(plan, hooks);
+  CHECK(done == std::vector<int>{1, 2, 3, 4, 5});
+  REQUIRE(r.frames.size() == 5);
+  CHECK(r.failed == 0);
+  CHECK_FALSE(r.interrupted);
+  CHECK(r.frames[0].status == FrameStatus::Template);
+  CHECK(r.frames[0].iterations == 0);
+  double before = 0, after = 0;
+  for (int t = 0; t < 5; ++t) {
+    const std::string name = "frame_000" + std::to_string(t);
+    CHECK(fs::exists(dir / ("out/frames/" + name + ".obj")));
+    CHECK(fs::exists(dir / ("out/distortion/" + name + ".csv")));
+    before += r.frames[t].shear_before.mean;
+    after += r.frames[t].shear_after.mean;
+    if (t > 0) {
+      CHECK(r.frames[t].status == FrameStatus::Optimized);
+      CHECK(r.frames[t].iterations > 0);
+      // On a coarse tube (12 segments) the output's chords cut inside the input's facets.
+      CHECK(r.frames[t].out_to_in.max < 0.2 * mean_edge_length(plan.templ));
+      CHECK(r.frames[t].in_to_out.max < 0.2 * mean_edge_length(plan.templ));
+    }
+  }
+  CHECK(after < before);
+  // The template frame is copied byte for byte; the others keep their texture coordinates.
+  CHECK(read_file(dir / "out/frames/frame_0000.obj") == read_file(dir / "in/frame_0000.obj"));
+  const ObjFile out = read_obj(dir / "out/frames/frame_0003.obj");
+  const ObjFile in = read_obj(dir / "in/frame_0003.obj");
+  CHECK(out.texcoords == in.texcoords);
+  CHECK(out.mesh.F == in.mesh.F);
+  CHECK(out.mesh.V != in.mesh.V);
+  CHECK(read_file(dir / "out/summary.csv") == format_summary_csv(r.frames, false));
+  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "out/report.json"));
+  CHECK(report["totals"]["frames_written"] == 5);
+  CHECK(report["totals"]["template_unchanged"] == 1);
+  CHECK(report["config"]["input"]["frames"] == (dir / "in").string());
+  CHECK(report["interrupted"] == false);
+  CHECK_FALSE(report.contains("run"));  // no timings
+  CHECK(report["versions"].contains("seqmassage"));
+}
+
+TEST_CASE("the output bytes do not depend on the number of threads") {
+  test::TempFolder dir("job_threads");
+  JobConfig c = folder_job(dir.path(), tube(6));
+  c.threads = 1;
+  c.output.dir = dir / "one";
+  run_sequence_job(plan_sequence_job(c));
+  c.threads = 2;
+  c.frames_in_flight = 3;
+  c.output.dir = dir / "two";
+  run_sequence_job(plan_sequence_job(c));
+  for (const char* file : {"summary.csv", "frames/frame_0002.obj", "frames/frame_0005.obj",
+                           "distortion/frame_0004.csv"})
+    CHECK(read_file(dir / "one" / file) == read_file(dir / "two" / file));
+}
+
+TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
+  test::TempFolder dir("job_template");
+  JobConfig c = folder_job(dir.path(), tube(3));
+  c.templ.optimize = true;
+  c.input.range.stop = 1;
+  SequenceResult r = run_sequence_job(plan_sequence_job(c));
+  REQUIRE(r.frames.size() == 1);
+  CHECK(r.frames[0].status == FrameStatus::Optimized);
+
+  const SyntheticSequence seq = make_synthetic_sequence(tube(3));
+  write_obj(dir / "rest.obj", seq.rest);
+  c.templ = TemplateConfig{};
+  c.templ.mesh = dir / "rest.obj";
+  c.input.range = FrameRange{};
+  const SequencePlan plan = plan_sequence_job(c);
+  CHECK(plan.template_frame == -1);
+  CHECK(plan.template_source == "rest.obj");
+  r = run_sequence_job(plan);
+  REQUIRE(r.frames.size() == 3);
+  for (const FrameSummary& f : r.frames) CHECK(f.status == FrameStatus::Optimized);
+}
+
+TEST_CASE("frame ranges select the frames, the template is indexed in the full list") {
+  test::TempFolder dir("job_range");
+  JobConfig c = folder_job(dir.path(), tube(6));
+  c.input.range = {1, 6, 2};
+  const SequencePlan plan = plan_sequence_job(c);
+  CHECK(plan.selected == std::vector<int>{1, 3, 5});
+  const SequenceResult r = run_sequence_job(plan);
+  REQUIRE(r.frames.size() == 3);
+  CHECK(r.frames[1].frame == 3);
+  CHECK(r.frames[1].file == "frame_0003.obj");
+  CHECK_FALSE(fs::exists(dir / "out/frames/frame_0000.obj"));
+
+  c.input.range = {7, std::nullopt, 1};
+  CHECK(error_of([&] { plan_sequence_job(c); }) ==
+        "input.range.start: 7 is beyond the last frame (the sequence has 6 frames, 0 to 5)");
+  c.input.range = {};
+  c.templ.frame = 9;
+  CHECK(error_of([&] { plan_sequence_job(c); }) ==
+        "template.frame: 9 is out of range (the sequence has 6 frames, 0 to 5)");
+}
+
+TEST_CASE("mismatched frames are refused before anything is written") {
+  test::TempFolder dir("job_mismatch");
+  JobConfig c = folder_job(dir.path());
+  const SyntheticSequence other = make_synthetic_sequence(tube(5, 10));
+  write_file_atomic(dir / "in/frame_0003.obj",
+                    format_synthetic_obj(other, synthetic_frame(other, 3).drifted, "other"));
+  CHECK(error_of([&] { plan_sequence_job(c); }) ==
+        "frame 3 (frame_0003.obj): 110 vertices, but the template, frame 0 (frame_0000.obj), "
+        "has 132");
+  CHECK_THROWS_AS(plan_sequence_job(c), InputError);
+  CHECK_FALSE(fs::exists(dir / "out"));
+
+  // Same vertex count, one face changed.
+  const SyntheticSequence seq = make_synthetic_sequence(tube());
+  std::string text = format_synthetic_obj(seq, synthetic_frame(seq, 3).drifted, "frame 3");
+  const size_t f = text.find("\nf ");
+  const size_t end = text.find('\n', f + 1);
+  text.replace(f, end - f, "\nf 1/1 3/3 2/2");
+  write_file_atomic(dir / "in/frame_0003.obj", text);
+  const std::string message = error_of([&] { plan_sequence_job(c); });
+  CHECK(message.rfind("frame 3 (frame_0003.obj): faces differ from the template's, frame 0 "
+                      "(frame_0000.obj): triangle 1 has vertices 1 3 2, the template's ",
+                      0) == 0);
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("an output folder that would overwrite an input is refused") {
+  test::TempFolder dir("job_overwrite");
+  JobConfig c = folder_job(dir.path());
+  fs::rename(dir / "in", dir / "frames");
+  c.input.frames = dir / "frames";
+  c.output.dir = dir.path();
+  const std::string message = error_of([&] { plan_sequence_job(c); });
+  CHECK(message.rfind("output.dir: writing ", 0) == 0);
+  CHECK(message.find("would overwrite an input file") != std::string::npos);
+  CHECK_THROWS_AS(plan_sequence_job(c), ConfigError);
+  CHECK_FALSE(fs::exists(dir / "summary.csv"));
+}
+
+TEST_CASE("a cancelled run stops before the next frame and records it") {
+  test::TempFolder dir("job_cancel");
+  const JobConfig c = folder_job(dir.path());
+  std::atomic<bool> cancel{true};
+  RunHooks hooks;
+  hooks.cancel = &cancel;
+  const SequenceResult r = run_sequence_job(plan_sequence_job(c), hooks);
+  CHECK(r.interrupted);
+  CHECK(r.frames.empty());
+  CHECK(read_file(dir / "out/summary.csv") == format_summary_csv({}, false));
+  CHECK(nlohmann::json::parse(read_file(dir / "out/report.json"))["interrupted"] == true);
+}
+
+TEST_CASE("a synthetic input is generated with its ground truth") {
+  test::TempFolder dir("job_synthetic");
+  JobConfig c;
+  c.input.synthetic = tube(4);
+  c.output.dir = dir / "out";
+  c.threads = 2;
+  const SequencePlan plan = plan_sequence_job(c);
+  CHECK_FALSE(fs::exists(dir / "out"));  // planning writes nothing
+  const std::string description = describe_plan(plan);
+  CHECK(description.find("input: synthetic bending tube, 4 frames of 132 vertices") !=
+        std::string::npos);
+  CHECK(description.find("template: frame 0 (frame_0000.obj), 132 vertices, 240 triangles; "
+                         "written unchanged") != std::string::npos);
+  const SequenceResult r = run_sequence_job(plan);
+  CHECK(fs::exists(dir / "out/input/frame_0003.obj"));
+  CHECK(fs::exists(dir / "out/ground_truth/frame_0003.obj"));
+  REQUIRE(r.frames.size() == 4);
+  REQUIRE(r.frames[3].ground_truth);
+  CHECK(r.frames[3].ground_truth->mean_after < r.frames[3].ground_truth->mean_before);
+  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "out/report.json"));
+  CHECK(report["ground_truth"]["mean_after"] < report["ground_truth"]["mean_before"]);
+  CHECK(report["run"]["threads"] == 2);
+}
