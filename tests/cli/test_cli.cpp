@@ -1,0 +1,303 @@
+// The seqmassage command line, run as a subprocess on small generated sequences: outputs and
+// their columns, determinism across thread counts, bad configs and inputs (exit code and message,
+// nothing written), options, interruption.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "io/atomic_file.hpp"
+#include "pipeline/synthetic.hpp"
+#include "pipeline/temp_folder.hpp"
+
+using namespace sm;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Runs seqmassage with `args` (already quoted where needed) from the folder `cwd`.
+Run seqmassage(const fs::path& cwd, const std::string& args) {
+  const fs::path out = cwd / "stdout.txt", err = cwd / "stderr.txt";
+  const std::string command = "cd " + quote(cwd.string()) + " && " + quote(SEQMASSAGE_BIN) + " " +
+                              args + " >" + quote(out.string()) + " 2>" + quote(err.string());
+  const int status = std::system(command.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  fs::remove(out);
+  fs::remove(err);
+  return r;
+}
+
+SyntheticConfig tube(int frames = 5, int segments = 12) {
+  SyntheticConfig c;
+  c.frames = frames;
+  c.segments = segments;
+  c.rings = 10;
+  return c;
+}
+
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(read_file(path));
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::istringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// A folder with frames in `in/` (5 frames of a 12×10 tube) and a config job.json reading them.
+struct Fixture {
+  test::TempFolder dir;
+  explicit Fixture(const std::string& name, const std::string& extra = "") : dir(name) {
+    write_synthetic_sequence(make_synthetic_sequence(tube()), dir / "in", dir / "gt");
+    config("job.json", "out", extra);
+  }
+  void config(const std::string& file, const std::string& out, const std::string& extra = "") {
+    write_text(dir / file, R"({"job": "sequence", "input": {"frames": "in"},
+      "output": {"dir": ")" + out + R"(", "per_triangle_csv": true, "timings": false},
+      "massage": {"iterations": 8})" + extra + "}");
+  }
+};
+
+}  // namespace
+
+TEST_CASE("--help documents the options and exit codes, --version the version") {
+  test::TempFolder dir("cli_help");
+  const Run help = seqmassage(dir.path(), "--help");
+  CHECK(help.code == 0);
+  for (const char* text : {"Usage: seqmassage [options] CONFIG.json", "--threads N",
+                           "--frames A:B[:STEP]", "--dry-run", "--quiet", "Exit status:",
+                           "  0    every frame", "  2    usage or config error", "  3    input error",
+                           "  4    I/O error", "  5    processing error", "  130  interrupted"})
+    CHECK_THAT(help.out, Catch::Contains(text));
+  const Run version = seqmassage(dir.path(), "--version");
+  CHECK(version.code == 0);
+  CHECK_THAT(version.out, Catch::StartsWith("seqmassage 0."));
+}
+
+TEST_CASE("a run writes the documented outputs, and corrects the frames") {
+  Fixture f("cli_run");
+  const Run r = seqmassage(f.dir.path(), "job.json");
+  REQUIRE(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("results: "));
+  CHECK_THAT(r.err, Catch::Contains("frame 5/5 frame_0004.obj: optimized"));  // not a terminal
+  for (int t = 0; t < 5; ++t) {
+    const std::string name = "frame_000" + std::to_string(t);
+    CHECK(fs::exists(f.dir / ("out/frames/" + name + ".obj")));
+    const auto table = read_csv(f.dir / ("out/distortion/" + name + ".csv"));
+    REQUIRE(table.size() == 241);
+    CHECK(table[0] == std::vector<std::string>{"triangle", "shear_before", "shear_after"});
+  }
+  CHECK(fs::exists(f.dir / "out/report.json"));
+  const auto summary = read_csv(f.dir / "out/summary.csv");
+  REQUIRE(summary.size() == 6);
+  const std::vector<std::string> documented = {
+      "frame", "file", "vertices", "triangles", "shear_max_before", "shear_mean_before",
+      "shear_p95_before", "shear_max_after", "shear_mean_after", "shear_p95_after",
+      "dist_out_to_in_max", "dist_out_to_in_rms", "dist_in_to_out_max", "dist_in_to_out_rms",
+      "iterations", "seconds"};
+  CHECK(std::vector<std::string>(summary[0].begin(), summary[0].begin() + 16) == documented);
+  double before = 0, after = 0;
+  for (int t = 1; t <= 5; ++t) {
+    CHECK(summary[t][0] == std::to_string(t - 1));
+    CHECK(summary[t][1] == "frame_000" + std::to_string(t - 1) + ".obj");
+    CHECK(summary[t][2] == "132");
+    CHECK(summary[t][3] == "240");
+    before += std::stod(summary[t][5]);
+    after += std::stod(summary[t][8]);
+  }
+  CHECK(after <= before);
+  CHECK(summary[1][16] == "template");
+  CHECK(summary[2][16] == "optimized");
+  // The template frame is byte-identical to its input.
+  CHECK(read_file(f.dir / "out/frames/frame_0000.obj") == read_file(f.dir / "in/frame_0000.obj"));
+}
+
+TEST_CASE("one and two threads write the same bytes") {
+  Fixture f("cli_threads");
+  f.config("job2.json", "out2");
+  REQUIRE(seqmassage(f.dir.path(), "--threads 1 -q job.json").code == 0);
+  REQUIRE(seqmassage(f.dir.path(), "--threads=2 -q job2.json").code == 0);
+  int compared = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(f.dir / "out")) {
+    const fs::path rel = fs::relative(entry.path(), f.dir / "out");
+    if (!entry.is_regular_file() || rel == "report.json") continue;
+    INFO(rel.string());
+    CHECK(read_file(entry.path()) == read_file(f.dir / "out2" / rel));
+    ++compared;
+  }
+  CHECK(compared == 11);  // 5 frames, 5 tables, summary.csv
+}
+
+TEST_CASE("bad configs exit with code 2, name the key and write nothing") {
+  Fixture f("cli_bad_config");
+  struct Case {
+    std::string extra;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {R"(, "massage": {"iteratons": 3})",
+       "job.json: massage.iteratons: unknown key (did you mean \"iterations\"?)"},
+      {R"(, "massage": {"iterations": "ten"})",
+       "job.json: massage.iterations: expected an integer >= 1, got \"ten\""},
+      {R"(, "massage": {"mu": 2})",
+       "job.json: massage.mu: expected \"auto\" or a number in [0, 1), got 2"},
+      {R"(, "threads": 1, "threads": 2)",
+       "job.json: threads: duplicate key (each key may appear once)"},
+      {R"(, "thread": 2)", "job.json: thread: unknown key (did you mean \"threads\"?)"},
+      {R"(, "template": {"frame": 7})",
+       "job.json: template.frame: 7 is out of range (the sequence has 5 frames, 0 to 4)"},
+  };
+  for (const Case& c : cases) {
+    // The Fixture's config has "massage"; these replace it.
+    std::string text = R"({"job": "sequence", "input": {"frames": "in"}, "output": {"dir": "out"})" +
+                       c.extra + "}";
+    write_text(f.dir / "job.json", text);
+    const Run r = seqmassage(f.dir.path(), "job.json");
+    INFO(text);
+    CHECK(r.code == 2);
+    CHECK(r.err == "seqmassage: " + c.message + "\n");
+    CHECK_FALSE(fs::exists(f.dir / "out"));
+  }
+  write_text(f.dir / "job.json", "{\"job\": \"sequence\", // a comment\n}");
+  Run r = seqmassage(f.dir.path(), "job.json");
+  CHECK(r.code == 2);
+  CHECK(r.err == "seqmassage: job.json: line 1, column 21: comments are not allowed in JSON\n");
+  CHECK_FALSE(fs::exists(f.dir / "out"));
+}
+
+TEST_CASE("usage errors exit with code 2") {
+  Fixture f("cli_usage");
+  Run r = seqmassage(f.dir.path(), "");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: missing the config file"));
+  r = seqmassage(f.dir.path(), "--bogus job.json");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: unknown option '--bogus'"));
+  r = seqmassage(f.dir.path(), "--threads many job.json");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: --threads: expected an integer in [0, 4096]"));
+  r = seqmassage(f.dir.path(), "--frames 4:2 job.json");
+  CHECK(r.code == 2);
+  CHECK(r.err == "seqmassage: --frames: B must be >= A, got \"4:2\"\n");
+  r = seqmassage(f.dir.path(), "nowhere.json");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: config file 'nowhere.json' does not exist"));
+  CHECK_FALSE(fs::exists(f.dir / "out"));
+}
+
+TEST_CASE("mismatched frames exit with code 3 and write nothing") {
+  Fixture f("cli_mismatch");
+  const SyntheticSequence other = make_synthetic_sequence(tube(5, 10));
+  write_file_atomic(f.dir / "in/frame_0003.obj",
+                    format_synthetic_obj(other, synthetic_frame(other, 3).drifted, "other"));
+  const Run r = seqmassage(f.dir.path(), "job.json");
+  CHECK(r.code == 3);
+  CHECK(r.err ==
+        "seqmassage: input error: frame 3 (frame_0003.obj): 110 vertices, but the template, "
+        "frame 0 (frame_0000.obj), has 132\n");
+  CHECK_FALSE(fs::exists(f.dir / "out"));
+}
+
+TEST_CASE("a missing frame folder exits with code 4, an overwriting output with 2") {
+  Fixture f("cli_io");
+  fs::rename(f.dir / "in", f.dir / "frames");
+  Run r = seqmassage(f.dir.path(), "job.json");
+  CHECK(r.code == 4);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: I/O error: "));
+  CHECK_THAT(r.err, Catch::Contains("in"));
+  write_text(f.dir / "over.json",
+             R"({"job": "sequence", "input": {"frames": "frames"}, "output": {"dir": "."}})");
+  r = seqmassage(f.dir.path(), "over.json");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: over.json: output.dir: writing "));
+  CHECK_THAT(r.err, Catch::Contains("would overwrite an input file"));
+  CHECK_FALSE(fs::exists(f.dir / "summary.csv"));
+}
+
+TEST_CASE("--dry-run checks and describes, --frames selects, --quiet is quiet") {
+  Fixture f("cli_options");
+  Run r = seqmassage(f.dir.path(), "--dry-run job.json");
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("input: 5 OBJ frames in "));
+  CHECK_THAT(r.out, Catch::Contains("template: frame 0 (frame_0000.obj), 132 vertices"));
+  CHECK_THAT(r.out, Catch::Contains("dry run: nothing written"));
+  CHECK_FALSE(fs::exists(f.dir / "out"));
+
+  r = seqmassage(f.dir.path(), "--quiet --frames 1:4:2 job.json");
+  CHECK(r.code == 0);
+  CHECK(r.out.empty());
+  CHECK(r.err.empty());
+  CHECK(fs::exists(f.dir / "out/frames/frame_0001.obj"));
+  CHECK(fs::exists(f.dir / "out/frames/frame_0003.obj"));
+  CHECK_FALSE(fs::exists(f.dir / "out/frames/frame_0000.obj"));
+  CHECK_FALSE(fs::exists(f.dir / "out/frames/frame_0002.obj"));
+  CHECK(read_csv(f.dir / "out/summary.csv").size() == 3);
+}
+
+TEST_CASE("a synthetic input runs without outside data and keeps the ground truth") {
+  test::TempFolder dir("cli_synthetic");
+  write_text(dir / "demo.json", R"({"job": "sequence",
+    "input": {"synthetic": {"frames": 4, "segments": 12, "rings": 10}},
+    "output": {"dir": "demo"}, "massage": {"iterations": 8}})");
+  const Run r = seqmassage(dir.path(), "demo.json");
+  REQUIRE(r.code == 0);
+  CHECK(r.out == "results: demo/ (frames/, summary.csv, report.json)\n");
+  CHECK(fs::exists(dir / "demo/input/frame_0003.obj"));
+  CHECK(fs::exists(dir / "demo/ground_truth/frame_0003.obj"));
+  CHECK(fs::exists(dir / "demo/frames/frame_0003.obj"));
+}
+
+TEST_CASE("Ctrl-C stops the run with code 130, the frames done are recorded") {
+  test::TempFolder dir("cli_interrupt");
+  write_text(dir / "long.json", R"({"job": "sequence",
+    "input": {"synthetic": {"frames": 400, "segments": 24, "rings": 40}},
+    "output": {"dir": "out"}, "threads": 1})");
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    if (::chdir(dir.path().c_str()) != 0) ::_exit(99);
+    std::freopen("/dev/null", "w", stderr);
+    std::freopen("/dev/null", "w", stdout);
+    ::execl(SEQMASSAGE_BIN, SEQMASSAGE_BIN, "long.json", static_cast<char*>(nullptr));
+    ::_exit(98);
+  }
+  // Interrupt once the run has started (the generated input is being written).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(dir / "out/input") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  const auto summary = read_csv(dir / "out/summary.csv");
+  CHECK(summary.size() < 401);
+  CHECK_THAT(read_file(dir / "out/report.json"), Catch::Contains("\"interrupted\": true"));
+}
