@@ -221,8 +221,12 @@ GltfFile load_gltf_file(const fs::path& path) {
     throw_gltf_error(path, "JSON", std::string("not valid JSON: ") + e.what());
   }
   if (!out.json.is_object()) throw_gltf_error(path, "JSON", "the document is not an object");
-  check_extensions(path, out.json);
-  check_resources(path, out.json, is_glb, layout.has_bin);
+  try {
+    check_extensions(path, out.json);
+    check_resources(path, out.json, is_glb, layout.has_bin);
+  } catch (const json::exception& e) {  // a member of the wrong JSON type
+    throw_gltf_error(path, "JSON", std::string("unexpected value: ") + e.what());
+  }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_encoded_image, nullptr);

@@ -39,6 +39,12 @@ TEST_CASE("glTF: truncated or malformed GLB and JSON", "[gltf]") {
   const auto json = dir.path / "broken.gltf";
   write_file_atomic(json, "{\"asset\": {\"version\": \"2.0\"}, ");
   CHECK_THROWS_WITH(load(json), Contains("broken.gltf") && Contains("JSON"));
+  write_file_atomic(json,
+                    R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4, "uri": )"
+                    R"("data:application/octet-stream;base64,AAAAAA=="}], "bufferViews": )"
+                    R"([{"buffer": 0, "byteLength": "four"}], "images": [{"bufferView": 0}]})");
+  CHECK_THROWS_AS(load(json), InputError);
+  CHECK_THROWS_WITH(load(json), Contains("broken.gltf") && Contains("JSON"));
   CHECK_THROWS_AS(load(dir.path / "missing.glb"), IoError);
 }
 

@@ -239,5 +239,52 @@ TEST_CASE("glTF two-bone skinned strip matches linear blend skinning in closed f
   }
 }
 
+TEST_CASE("glTF morph weights default to the node's, else the mesh's", "[gltf]") {
+  ScratchDir dir("gltf-default-weights");
+  test::ModelBuilder b = test::morph_quad();
+  b.m.animations.clear();  // no weights channel: a translation channel drives the sequence
+  b.channel(0, "translation", {0, 1}, {1, 2, 3, 1, 2, 4}, "LINEAR");
+  b.save(dir.path / "quad.glb", true);
+  GltfSequence s = load_gltf_sequence({dir.path / "quad.glb", "", "", std::nullopt});
+  Positions V = evaluate_gltf_frame(s, 1).V;
+  CHECK(V(2, 2) == Approx(4.5));  // mesh weights (0.5, 0), translation z = 4
+  CHECK(V(3, 2) == Approx(4));
+  b.m.nodes[0].weights = {0.25, 1};
+  b.save(dir.path / "quad.glb", true);
+  s = load_gltf_sequence({dir.path / "quad.glb", "", "", std::nullopt});
+  V = evaluate_gltf_frame(s, 1).V;
+  CHECK(V(2, 2) == Approx(4.25));
+  CHECK(V(3, 2) == Approx(6));
+}
+
+TEST_CASE("glTF rotation keys as normalized shorts are decoded and normalized", "[gltf]") {
+  ScratchDir dir("gltf-short-rotation");
+  test::ModelBuilder b = test::node_animated_triangle();
+  const double half = 85 * M_PI / 180;
+  const int16_t q[8] = {0,
+                        0,
+                        0,
+                        32767,
+                        0,
+                        0,
+                        int16_t(std::lround(std::sin(half) * 32767)),
+                        int16_t(std::lround(std::cos(half) * 32767))};
+  b.m.animations[0].samplers[0].output =
+      b.accessor(b.view(q, sizeof q), TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4, 2, true);
+  b.save(dir.path / "nodes.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir.path / "nodes.glb", "", "", 4.0});
+  const double end = 2 * std::atan2(q[6] / 32767.0, q[7] / 32767.0);  // the quantized angle
+  for (int k = 0; k <= 4; ++k) {  // t in [0, 1]: translation and scale as in the float model
+    const double t = s.times[size_t(k)], u = t / 2;
+    const double x = 2 * (u * u * u - 2 * u * u + u) * 3 + (-2 * u * u * u + 3 * u * u) * 2;
+    const Eigen::Affine3d parent =
+        Eigen::Translation3d(x, 0, 0) * Eigen::AngleAxisd(end * t, Eigen::Vector3d::UnitZ());
+    Positions expected(3, 3);
+    for (int v = 0; v < 3; ++v)
+      expected.row(v) = (parent * (s.rest.vertex(v) + Vec3(1, 0, 0))).transpose();
+    require_close(evaluate_gltf_frame(s, k).V, expected);
+  }
+}
+
 }  // namespace
 }  // namespace sm

@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 namespace sm::test {
@@ -364,12 +363,12 @@ std::optional<int> validate_gltf(const fs::path& file, std::string& report) {
   report = text.str();
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   if (code == 3) return std::nullopt;  // the gltf-validator package is not installed
-  std::smatch match;
-  if (!std::regex_search(report, match, std::regex(": errors ([0-9]+) warnings"))) {
+  const size_t at = report.find(": errors ");
+  if (at == std::string::npos) {
     report = "validator failed (exit " + std::to_string(code) + "): " + report;
     return -1;
   }
-  return std::stoi(match[1]);
+  return std::atoi(report.c_str() + at + 9);
 }
 
 void require_valid_gltf(const fs::path& file) {
