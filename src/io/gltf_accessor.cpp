@@ -73,6 +73,27 @@ int gltf_type_components(int type) {
   }
 }
 
+std::string gltf_type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "";
+  }
+}
+
 namespace {
 
 int matrix_columns(int type) {

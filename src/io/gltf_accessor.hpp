@@ -35,6 +35,8 @@ extern const GltfAccessorRule kMatrix;          ///< inverse bind matrices
 int gltf_component_size(int component_type);
 /// Components of an accessor type (1 SCALAR .. 16 MAT4), 0 for an unknown type.
 int gltf_type_components(int type);
+/// Name of an accessor type in glTF JSON ("SCALAR" .. "MAT4").
+std::string gltf_type_name(int type);
 /// Bytes of one element, with the 4-byte column alignment of MAT2/MAT3 of small components.
 size_t gltf_element_size(int component_type, int type);
 

@@ -6,39 +6,11 @@
 #include <cstdint>
 #include <limits>
 
+#include "io/gltf_accessor.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
 using nlohmann::json;
-
-int gltf_type_size(const std::string& type) {
-  if (type == "SCALAR") return 1;
-  if (type == "VEC2") return 2;
-  if (type == "VEC3") return 3;
-  if (type == "VEC4" || type == "MAT2") return 4;
-  if (type == "MAT3") return 9;
-  if (type == "MAT4") return 16;
-  return 0;
-}
-
-std::string gltf_type_name(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    default:
-      return "MAT4";
-  }
-}
 
 int GlbBuilder::add_view(const void* data, size_t size, int target, int stride) {
   json view = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", size}};
@@ -51,11 +23,13 @@ int GlbBuilder::add_view(const void* data, size_t size, int target, int stride) 
   return int(views.size()) - 1;
 }
 
-int GlbBuilder::add_accessor(int view, size_t byte_offset, int component_type,
-                             const std::string& type, size_t count, bool normalized,
-                             const std::vector<double>& min, const std::vector<double>& max) {
-  json a = {
-      {"bufferView", view}, {"componentType", component_type}, {"count", count}, {"type", type}};
+int GlbBuilder::add_accessor(int view, size_t byte_offset, int component_type, int type,
+                             size_t count, bool normalized, const std::vector<double>& min,
+                             const std::vector<double>& max) {
+  json a = {{"bufferView", view},
+            {"componentType", component_type},
+            {"count", count},
+            {"type", gltf_type_name(type)}};
   if (byte_offset != 0) a["byteOffset"] = byte_offset;
   if (normalized) a["normalized"] = true;
   if (!min.empty()) a["min"] = min;
@@ -65,9 +39,8 @@ int GlbBuilder::add_accessor(int view, size_t byte_offset, int component_type,
   return int(accessors.size()) - 1;
 }
 
-int GlbBuilder::add_floats(const std::vector<float>& values, const std::string& type, int target,
-                           bool bounds) {
-  const size_t components = size_t(gltf_type_size(type));
+int GlbBuilder::add_floats(const std::vector<float>& values, int type, int target, bool bounds) {
+  const size_t components = size_t(gltf_type_components(type));
   const size_t count = values.size() / components;
   std::vector<double> min, max;
   if (bounds) {

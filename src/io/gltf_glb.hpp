@@ -21,15 +21,15 @@ class GlbBuilder {
   /// index.
   int add_view(const void* data, size_t size, int target = 0, int stride = 0);
 
-  /// Adds an accessor over buffer view `view`; `min`/`max` are written when not empty.
-  int add_accessor(int view, size_t byte_offset, int component_type, const std::string& type,
-                   size_t count, bool normalized, const std::vector<double>& min = {},
+  /// Adds an accessor of `type` (TINYGLTF_TYPE_*) over buffer view `view`; `min`/`max` are
+  /// written when not empty.
+  int add_accessor(int view, size_t byte_offset, int component_type, int type, size_t count,
+                   bool normalized, const std::vector<double>& min = {},
                    const std::vector<double>& max = {});
 
-  /// Adds float data (count × components, components from `type`) in a new buffer view;
-  /// `bounds` adds min and max computed from the stored float values.
-  int add_floats(const std::vector<float>& values, const std::string& type, int target,
-                 bool bounds);
+  /// Adds float data (count × components of `type`) in a new buffer view; `bounds` adds min and
+  /// max computed from the stored float values.
+  int add_floats(const std::vector<float>& values, int type, int target, bool bounds);
 
   /// The GLB bytes (header, JSON chunk padded with spaces, BIN chunk padded with zeros). Leaves
   /// the builder empty.
@@ -39,11 +39,5 @@ class GlbBuilder {
   nlohmann::json doc_ = nlohmann::json::object();
   std::string bin_;
 };
-
-/// Number of components of an accessor type name ("SCALAR" 1 .. "MAT4" 16).
-int gltf_type_size(const std::string& type);
-
-/// Accessor type name of a tinygltf TINYGLTF_TYPE_* value.
-std::string gltf_type_name(int type);
 
 }  // namespace sm

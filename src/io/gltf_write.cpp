@@ -51,7 +51,7 @@ int copy_accessor(GlbBuilder& glb, const GltfFile& file, int index, bool vertex_
       bytes.data(), bytes.size(),
       vertex_attribute ? TINYGLTF_TARGET_ARRAY_BUFFER : TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER,
       stride);
-  return glb.add_accessor(view, 0, a.componentType, gltf_type_name(a.type), a.count, a.normalized);
+  return glb.add_accessor(view, 0, a.componentType, a.type, a.count, a.normalized);
 }
 
 std::string sniff_mime_type(const std::vector<unsigned char>& b) {
@@ -238,15 +238,17 @@ GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence&
       base_tangents = tangents.cast<float>().cast<double>();
       for (const SourcePrimitive& sp : prims) {
         json prim = sp.shared;
-        prim["attributes"]["POSITION"] = glb.add_floats(float_rows(base, sp.range, 3), "VEC3",
-                                                        TINYGLTF_TARGET_ARRAY_BUFFER, true);
+        prim["attributes"]["POSITION"] = glb.add_floats(
+            float_rows(base, sp.range, 3), TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
         if (sp.normals) {
-          prim["attributes"]["NORMAL"] = glb.add_floats(
-              float_rows(base_normals, sp.range, 3), "VEC3", TINYGLTF_TARGET_ARRAY_BUFFER, false);
+          prim["attributes"]["NORMAL"] =
+              glb.add_floats(float_rows(base_normals, sp.range, 3), TINYGLTF_TYPE_VEC3,
+                             TINYGLTF_TARGET_ARRAY_BUFFER, false);
         }
         if (sp.tangents) {
-          prim["attributes"]["TANGENT"] = glb.add_floats(
-              float_rows(base_tangents, sp.range, 4), "VEC4", TINYGLTF_TARGET_ARRAY_BUFFER, false);
+          prim["attributes"]["TANGENT"] =
+              glb.add_floats(float_rows(base_tangents, sp.range, 4), TINYGLTF_TYPE_VEC4,
+                             TINYGLTF_TARGET_ARRAY_BUFFER, false);
         }
         prim["targets"] = json::array();
         chunks.back().primitives.push_back(std::move(prim));
@@ -258,14 +260,14 @@ GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence&
         any_normals ? Positions((tangents - base_tangents).leftCols<3>()) : Positions();
     for (size_t p = 0; p < prims.size(); ++p) {
       const SourcePrimitive& sp = prims[p];
-      json target = {{"POSITION", glb.add_floats(float_rows(D, sp.range, 3), "VEC3",
+      json target = {{"POSITION", glb.add_floats(float_rows(D, sp.range, 3), TINYGLTF_TYPE_VEC3,
                                                  TINYGLTF_TARGET_ARRAY_BUFFER, true)}};
       if (sp.normals) {
-        target["NORMAL"] = glb.add_floats(float_rows(DN, sp.range, 3), "VEC3",
+        target["NORMAL"] = glb.add_floats(float_rows(DN, sp.range, 3), TINYGLTF_TYPE_VEC3,
                                           TINYGLTF_TARGET_ARRAY_BUFFER, false);
       }
       if (sp.tangents) {
-        target["TANGENT"] = glb.add_floats(float_rows(DT, sp.range, 3), "VEC3",
+        target["TANGENT"] = glb.add_floats(float_rows(DT, sp.range, 3), TINYGLTF_TYPE_VEC3,
                                            TINYGLTF_TARGET_ARRAY_BUFFER, false);
       }
       chunks.back().primitives[p]["targets"].push_back(std::move(target));
@@ -300,12 +302,13 @@ GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence&
     if (c > 0) node["scale"] = {0.0, 0.0, 0.0};
     nodes.push_back(std::move(node));
 
-    const int input = glb.add_accessor(
-        times_view, size_t(ch.first) * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT, "SCALAR",
-        size_t(ch.count), false, {double(times[size_t(ch.first)])}, {double(times[size_t(last)])});
+    const int input =
+        glb.add_accessor(times_view, size_t(ch.first) * sizeof(float),
+                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, size_t(ch.count),
+                         false, {double(times[size_t(ch.first)])}, {double(times[size_t(last)])});
     std::vector<float> one_hot(size_t(ch.count) * size_t(ch.count), 0.0f);
     for (int j = 0; j < ch.count; ++j) one_hot[size_t(j) * size_t(ch.count) + size_t(j)] = 1.0f;
-    add_sampler(input, glb.add_floats(one_hot, "SCALAR", 0, false), int(c), "weights");
+    add_sampler(input, glb.add_floats(one_hot, TINYGLTF_TYPE_SCALAR, 0, false), int(c), "weights");
     if (chunks.size() > 1) {
       std::vector<float> key_times, scales;
       const auto key = [&](int frame, float s) {
@@ -315,8 +318,8 @@ GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence&
       if (c > 0) key(0, 0.0f);
       key(ch.first, 1.0f);
       if (c + 1 < chunks.size()) key(ch.first + ch.count, 0.0f);
-      add_sampler(glb.add_floats(key_times, "SCALAR", 0, true),
-                  glb.add_floats(scales, "VEC3", 0, false), int(c), "scale");
+      add_sampler(glb.add_floats(key_times, TINYGLTF_TYPE_SCALAR, 0, true),
+                  glb.add_floats(scales, TINYGLTF_TYPE_VEC3, 0, false), int(c), "scale");
     }
   }
   json scene_nodes = json::array();

@@ -13,14 +13,8 @@ namespace sm {
 namespace {
 
 using test::ModelBuilder;
+using test::require_close;
 using test::ScratchDir;
-
-void require_close(const Positions& got, const Positions& expected, double rel = 1e-6) {
-  REQUIRE(got.rows() == expected.rows());
-  const double scale = std::max(1.0, expected.cwiseAbs().maxCoeff());
-  INFO("got\n" << got << "\nexpected\n" << expected);
-  REQUIRE((got - expected).cwiseAbs().maxCoeff() <= rel * scale);
-}
 
 const GltfAccessorRule kAnything{"test",
                                  {TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC2, TINYGLTF_TYPE_VEC3,

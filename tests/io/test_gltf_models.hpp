@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "mesh/mesh.hpp"
+
 namespace sm::test {
 
 /// A tinygltf model with one buffer that accessors are appended to.
@@ -70,6 +72,9 @@ struct ScratchDir {
 /// Runs tools/validate_gltf.js on `file`. Returns the number of errors (with the report in
 /// `report`), or nothing when node or the gltf-validator package is missing (`report` says why).
 std::optional<int> validate_gltf(const std::filesystem::path& file, std::string& report);
+
+/// Requires |got - expected| <= rel · max(1, max |expected|) coordinate by coordinate.
+void require_close(const Positions& got, const Positions& expected, double rel = 1e-6);
 
 /// Requires zero validator errors for `file`; WARNs and returns when the validator is unavailable.
 void require_valid_gltf(const std::filesystem::path& file);

@@ -12,19 +12,13 @@ namespace sm {
 namespace {
 
 using nlohmann::json;
+using test::require_close;
 using test::ScratchDir;
 
 std::vector<Positions> evaluated_frames(const GltfSequence& s) {
   std::vector<Positions> frames;
   for (int k = 0; k < s.num_frames(); ++k) frames.push_back(evaluate_gltf_frame(s, k).V);
   return frames;
-}
-
-void require_close(const Positions& got, const Positions& expected, double rel = 1e-6) {
-  REQUIRE(got.rows() == expected.rows());
-  const double scale = std::max(1.0, expected.cwiseAbs().maxCoeff());
-  INFO("got\n" << got << "\nexpected\n" << expected);
-  REQUIRE((got - expected).cwiseAbs().maxCoeff() <= rel * scale);
 }
 
 TEST_CASE("glTF writer round trip keeps positions, times, materials, textures and UVs", "[gltf]") {
