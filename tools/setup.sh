@@ -1,36 +1,54 @@
 #!/usr/bin/env bash
 # Installs whatever seqmassage needs that this Debian machine lacks (apt-get), and nothing else.
-# Safe to run again: packages already present are skipped.
-#   bash tools/setup.sh            build and test dependencies
-#   SEQMASSAGE_SETUP_EXTRAS=0 ...  skip the optional ones (plots, glTF validator, clang for fuzzing)
+# Safe to run again: what is present is skipped.
+#   bash tools/setup.sh             build and test dependencies, then the optional extras
+#   SEQMASSAGE_SETUP_EXTRAS=0 ...   skip the extras (plots, glTF validator, clang for fuzzing)
+# The required packages must install; an extra that cannot be installed only prints a warning
+# (its tests then skip with a message).
 set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-packages=(g++ make cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libtinygltf-dev catch2)
-if [ "${SEQMASSAGE_SETUP_EXTRAS:-1}" = 1 ]; then
-  # plots (tools/plot_distortion.py), glTF-Validator (node), libFuzzer and sanitizer runtimes
-  packages+=(python3-matplotlib nodejs npm clang libclang-rt-dev)
-fi
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+export DEBIAN_FRONTEND=noninteractive
+updated=0
+apt_install() {
+  if [ "$updated" = 0 ]; then
+    $sudo apt-get update -qq
+    updated=1
+  fi
+  $sudo apt-get install -y -qq --no-install-recommends "$@" >/dev/null
+}
+have_pkg() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 
+required=(g++ make cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libtinygltf-dev catch2)
 missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-
+for p in "${required[@]}"; do have_pkg "$p" || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -ne 0 ] && sudo="sudo"
-  export DEBIAN_FRONTEND=noninteractive
-  $sudo apt-get update -qq
-  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  apt_install "${missing[@]}"
 else
-  echo "setup: all packages present"
+  echo "setup: build and test packages present"
 fi
 
+[ "${SEQMASSAGE_SETUP_EXTRAS:-1}" = 1 ] || exit 0
+
+# Extras, each best-effort: plots, sanitizer/libFuzzer runtimes, node for the glTF-Validator.
+extra() {  # extra NAME CHECK-COMMAND PACKAGE...
+  local name="$1" check="$2"
+  shift 2
+  if eval "$check" >/dev/null 2>&1; then return 0; fi
+  echo "setup: installing $name ($*)"
+  apt_install "$@" || echo "setup: warning: could not install $name; its tests will skip"
+}
+extra "matplotlib" "/usr/bin/python3 -c 'import matplotlib'" python3-matplotlib
+extra "clang" "command -v clang++" clang
+extra "clang runtimes" "have_pkg libclang-rt-dev || have_pkg libclang-rt-14-dev" libclang-rt-dev
+extra "node and npm" "command -v node && command -v npm" nodejs npm
+
 # The Khronos glTF-Validator (npm package), used by the glTF output tests when present.
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-if [ "${SEQMASSAGE_SETUP_EXTRAS:-1}" = 1 ] && command -v npm >/dev/null 2>&1 &&
-   [ ! -d "$root/tools/node_modules/gltf-validator" ]; then
+if command -v npm >/dev/null 2>&1 && [ ! -d "$root/tools/node_modules/gltf-validator" ]; then
   (cd "$root/tools" && npm install --silent --no-audit --no-fund --no-save gltf-validator@2 >/dev/null 2>&1) ||
-    echo "setup: could not install gltf-validator (npm); glTF validation tests will skip"
+    echo "setup: warning: could not install gltf-validator (npm); glTF validation tests will skip"
 fi
+exit 0
