@@ -48,7 +48,7 @@ extra "node and npm" "command -v node && command -v npm" nodejs npm
 
 # The Khronos glTF-Validator (npm package), used by the glTF output tests when present.
 if command -v npm >/dev/null 2>&1 && [ ! -d "$root/tools/node_modules/gltf-validator" ]; then
-  (cd "$root/tools" && npm install --silent --no-audit --no-fund --no-save gltf-validator@2 >/dev/null 2>&1) ||
+  (cd "$root/tools" && npm install --silent --no-audit --no-fund --no-save gltf-validator@2.0.0-dev.3.10 >/dev/null 2>&1) ||
     echo "setup: warning: could not install gltf-validator (npm); glTF validation tests will skip"
 fi
 exit 0
