@@ -152,8 +152,10 @@ std::string clock_text(double seconds) {
   if (!(seconds >= 0) || seconds > 359999) return "--:--";
   const long s = static_cast<long>(seconds + 0.5);
   char buffer[32];
-  if (s >= 3600) std::snprintf(buffer, sizeof buffer, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-  else std::snprintf(buffer, sizeof buffer, "%ld:%02ld", s / 60, s % 60);
+  if (s >= 3600)
+    std::snprintf(buffer, sizeof buffer, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else
+    std::snprintf(buffer, sizeof buffer, "%ld:%02ld", s / 60, s % 60);
   return buffer;
 }
 
@@ -195,9 +197,8 @@ class Progress {
     } else {
       std::cerr << "frame " << done << "/" << total << " " << f.file << ": "
                 << sm::status_name(f.status) << ", mean shear " << fixed(f.shear_before.mean, 4)
-                << " -> " << fixed(f.shear_after.mean, 4) << ", " << f.iterations
-                << " iterations, " << fixed(rate, 2) << " frames/s, ETA " << clock_text(eta)
-                << "\n";
+                << " -> " << fixed(f.shear_after.mean, 4) << ", " << f.iterations << " iterations, "
+                << fixed(rate, 2) << " frames/s, ETA " << clock_text(eta) << "\n";
     }
   }
 
@@ -246,9 +247,9 @@ int run(const Args& args) {
       after += f.shear_after.mean;
     }
     const double n = std::max<size_t>(1, result.frames.size());
-    std::cerr << "seqmassage: " << result.frames.size() << " frames in "
-              << fixed(result.seconds, 1) << " s (" << result.failed << " failed), mean shear "
-              << fixed(before / n, 4) << " -> " << fixed(after / n, 4) << "\n";
+    std::cerr << "seqmassage: " << result.frames.size() << " frames in " << fixed(result.seconds, 1)
+              << " s (" << result.failed << " failed), mean shear " << fixed(before / n, 4)
+              << " -> " << fixed(after / n, 4) << "\n";
     std::cout << "results: " << shown(out) << "/ (frames/, "
               << (plan.config.output.per_triangle_csv ? "distortion/, " : "")
               << "summary.csv, report.json)\n";

@@ -93,8 +93,7 @@ class StrictBuilder {
     Frame& top = stack_.back();
     if (top.value->is_array()) {
       top.value->push_back(std::move(value));
-      return {&top.value->back(),
-              top.path + "[" + std::to_string(top.value->size() - 1) + "]"};
+      return {&top.value->back(), top.path + "[" + std::to_string(top.value->size() - 1) + "]"};
     }
     json& slot = (*top.value)[top.key];
     slot = std::move(value);
@@ -178,8 +177,10 @@ class Section {
     for (const auto& item : value_->items()) {
       if (std::find(known_.begin(), known_.end(), item.key()) != known_.end()) continue;
       std::string message = "unknown key";
-      if (auto guess = nearest(item.key(), known_)) message += " (did you mean \"" + *guess + "\"?)";
-      else message += " (known keys: " + quoted_list(known_) + ")";
+      if (auto guess = nearest(item.key(), known_))
+        message += " (did you mean \"" + *guess + "\"?)";
+      else
+        message += " (known keys: " + quoted_list(known_) + ")";
       fail(path(item.key()), message);
     }
   }
@@ -218,7 +219,8 @@ std::string int_range(int64_t lo, int64_t hi) {
 
 int to_int(const json& v, const std::string& path, int64_t lo, int64_t hi = INT_MAX) {
   const auto i = as_integer(v);
-  if (!i || *i < lo || *i > hi) fail(path, "expected " + int_range(lo, hi) + ", got " + describe(v));
+  if (!i || *i < lo || *i > hi)
+    fail(path, "expected " + int_range(lo, hi) + ", got " + describe(v));
   return static_cast<int>(*i);
 }
 
@@ -309,7 +311,7 @@ const Names<JobKind> kJobs = {{"sequence", JobKind::Sequence}};
 const Names<WeightKind> kWeights = {{"mean_value", WeightKind::MeanValue},
                                     {"uniform", WeightKind::Uniform}};
 const Names<BoundaryWeights> kBoundary = {{"curve", BoundaryWeights::Curve},
-                                           {"one_sided", BoundaryWeights::OneSided}};
+                                          {"one_sided", BoundaryWeights::OneSided}};
 const Names<SampleKind> kSamples = {
     {"vertices", SampleKind::Vertices}, {"edges", SampleKind::Edges}, {"faces", SampleKind::Faces}};
 const Names<SolverKind> kSolvers = {{"iterative", SolverKind::Iterative},
@@ -325,9 +327,12 @@ void read_massage(const Section& s, MassageOptions& o) {
   read(s, "iterations", o.iterations, 1);
   if (const json* v = s.get("mu")) {
     const Interval range{0.0, false, 1.0, true};
-    if (v->is_string() && v->get<std::string>() == "auto") o.mu.reset();
-    else if (v->is_number() && range.contains(v->get<double>())) o.mu = v->get<double>();
-    else fail(s.path("mu"), "expected \"auto\" or " + range.describe() + ", got " + describe(*v));
+    if (v->is_string() && v->get<std::string>() == "auto")
+      o.mu.reset();
+    else if (v->is_number() && range.contains(v->get<double>()))
+      o.mu = v->get<double>();
+    else
+      fail(s.path("mu"), "expected \"auto\" or " + range.describe() + ", got " + describe(*v));
   }
   read(s, "samples", o.samples, kSamples);
   read(s, "tolerance", o.tolerance, Interval{0.0, false});
@@ -363,8 +368,9 @@ void read_synthetic(const Section& s, SyntheticConfig& c) {
   read(s, "drift", c.drift, Interval{0.0, false, 2.0, false});
   read(s, "seed", c.seed, 0);
   if (c.bend * M_PI / 180.0 * c.radius >= c.length)
-    fail(s.path("bend"), "the tube would fold onto itself: bend (in radians) times radius must stay "
-                         "below length");
+    fail(s.path("bend"),
+         "the tube would fold onto itself: bend (in radians) times radius must stay "
+         "below length");
 }
 
 }  // namespace
@@ -398,7 +404,8 @@ json parse_json_strict(std::string_view text) {
     const std::string_view before = text.substr(0, end > 0 ? end - 1 : 0);
     const size_t line = 1 + std::count(before.begin(), before.end(), '\n');
     const size_t line_start = before.rfind('\n');
-    const size_t column = before.size() - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+    const size_t column =
+        before.size() - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
     where = "line " + std::to_string(line) + ", column " + std::to_string(column) + ": ";
   }
   throw ConfigError(where + builder.error());
@@ -412,14 +419,15 @@ JobConfig load_config(const fs::path& path) {
 JobConfig parse_config(const json& document, const fs::path& base_dir) {
   const fs::path base = fs::absolute(base_dir).lexically_normal();
   JobConfig c;
-  const Section root(&document, "",
-                     {"job", "input", "template", "output", "massage", "threads",
-                      "frames_in_flight"});
+  const Section root(
+      &document, "",
+      {"job", "input", "template", "output", "massage", "threads", "frames_in_flight"});
   root.require("job", "the kind of job: \"sequence\"");
   read(root, "job", c.job, kJobs);
 
-  const Section input(&root.require("input", "\"frames\": a folder of OBJ frames, or \"synthetic\""),
-                      "input", {"frames", "synthetic", "range"});
+  const Section input(
+      &root.require("input", "\"frames\": a folder of OBJ frames, or \"synthetic\""), "input",
+      {"frames", "synthetic", "range"});
   c.input.frames = read_path(input, "frames", base);
   if (input.has("synthetic")) {
     c.input.synthetic.emplace();
@@ -445,8 +453,9 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   if (templ.has("frame") && templ.has("mesh"))
     fail("template", "give \"frame\" or \"mesh\", not both");
   if (templ.has("mesh") && c.templ.optimize)
-    fail("template.optimize", "only applies to a template \"frame\" (with a rest \"mesh\", every "
-                              "frame is optimized)");
+    fail("template.optimize",
+         "only applies to a template \"frame\" (with a rest \"mesh\", every "
+         "frame is optimized)");
   if (c.input.synthetic) {
     if (templ.has("mesh")) fail("template.mesh", "not available with input.synthetic");
     if (c.templ.frame >= c.input.synthetic->frames)
@@ -462,11 +471,12 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   read(output, "per_triangle_csv", c.output.per_triangle_csv);
   read(output, "timings", c.output.timings);
 
-  read_massage(Section(root.get("massage"), "massage",
-                       {"weights", "boundary_weights", "iterations", "mu", "samples", "tolerance", "lawson",
-                        "lawson_floor", "solver", "solver_tolerance", "solver_max_iterations",
-                        "closest_points", "walk_max_steps", "pin_boundary", "pinned"}),
-               c.massage);
+  read_massage(
+      Section(root.get("massage"), "massage",
+              {"weights", "boundary_weights", "iterations", "mu", "samples", "tolerance", "lawson",
+               "lawson_floor", "solver", "solver_tolerance", "solver_max_iterations",
+               "closest_points", "walk_max_steps", "pin_boundary", "pinned"}),
+      c.massage);
   read(root, "threads", c.threads, 0, 4096);
   read(root, "frames_in_flight", c.frames_in_flight, 0, 1000000);
   return c;
@@ -478,9 +488,9 @@ json to_json(const JobConfig& c) {
   json input;
   if (c.input.synthetic) {
     const SyntheticConfig& s = *c.input.synthetic;
-    input["synthetic"] = {{"shape", s.shape},   {"frames", s.frames}, {"segments", s.segments},
-                          {"rings", s.rings},   {"radius", s.radius}, {"length", s.length},
-                          {"bend", s.bend},     {"drift", s.drift},   {"seed", s.seed}};
+    input["synthetic"] = {{"shape", s.shape}, {"frames", s.frames}, {"segments", s.segments},
+                          {"rings", s.rings}, {"radius", s.radius}, {"length", s.length},
+                          {"bend", s.bend},   {"drift", s.drift},   {"seed", s.seed}};
   } else {
     input["frames"] = c.input.frames.string();
   }
@@ -488,8 +498,10 @@ json to_json(const JobConfig& c) {
                     {"stop", c.input.range.stop ? json(*c.input.range.stop) : json(nullptr)},
                     {"step", c.input.range.step}};
   j["input"] = input;
-  if (c.templ.mesh.empty()) j["template"] = {{"frame", c.templ.frame}, {"optimize", c.templ.optimize}};
-  else j["template"] = {{"mesh", c.templ.mesh.string()}, {"optimize", false}};
+  if (c.templ.mesh.empty())
+    j["template"] = {{"frame", c.templ.frame}, {"optimize", c.templ.optimize}};
+  else
+    j["template"] = {{"mesh", c.templ.mesh.string()}, {"optimize", false}};
   j["output"] = {{"dir", c.output.dir.string()},
                  {"format", name_of(c.output.format, kFormats)},
                  {"per_triangle_csv", c.output.per_triangle_csv},
@@ -518,8 +530,10 @@ json to_json(const JobConfig& c) {
 FrameRange parse_frame_range(std::string_view text, std::string_view what) {
   const std::string name(what);
   auto bad = [&]() {
-    fail(name, "expected A:B[:STEP] (frame indices from A to before B, by STEP; B may be empty), "
-               "got \"" + std::string(text) + "\"");
+    fail(name,
+         "expected A:B[:STEP] (frame indices from A to before B, by STEP; B may be empty), "
+         "got \"" +
+             std::string(text) + "\"");
   };
   std::vector<std::string> parts;
   size_t begin = 0;
@@ -544,14 +558,13 @@ FrameRange parse_frame_range(std::string_view text, std::string_view what) {
   if (!parts[1].empty()) r.stop = number(parts[1]);
   if (parts.size() == 3) r.step = number(parts[2]);
   if (r.step < 1) fail(name, "STEP must be >= 1, got \"" + std::string(text) + "\"");
-  if (r.stop && *r.stop < r.start)
-    fail(name, "B must be >= A, got \"" + std::string(text) + "\"");
+  if (r.stop && *r.stop < r.start) fail(name, "B must be >= A, got \"" + std::string(text) + "\"");
   return r;
 }
 
 std::string format_frame_range(const FrameRange& range) {
-  return std::to_string(range.start) + ":" + (range.stop ? std::to_string(*range.stop) : "") +
-         ":" + std::to_string(range.step);
+  return std::to_string(range.start) + ":" + (range.stop ? std::to_string(*range.stop) : "") + ":" +
+         std::to_string(range.step);
 }
 
 }  // namespace sm

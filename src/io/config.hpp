@@ -25,9 +25,9 @@ struct SyntheticConfig {
   int rings = 48;                      ///< "rings": segments along the tube, >= 1
   double radius = 0.5;                 ///< "radius": tube radius, > 0
   double length = 4.0;                 ///< "length": tube length, > 0
-  double bend = 90.0;                  ///< "bend": bend angle of the last frame in degrees, [0, 300]
-  double drift = 0.6;                  ///< "drift": slide amplitude in edge lengths, [0, 2]
-  int seed = 1;                        ///< "seed": seed of the drift field, >= 0
+  double bend = 90.0;  ///< "bend": bend angle of the last frame in degrees, [0, 300]
+  double drift = 0.6;  ///< "drift": slide amplitude in edge lengths, [0, 2]
+  int seed = 1;        ///< "seed": seed of the drift field, >= 0
 };
 
 /// "input.range": which frames to process, as a Python slice [start, stop) by step of the frames
@@ -59,9 +59,9 @@ enum class OutputFormat {
 };
 
 struct OutputConfig {
-  std::filesystem::path dir;      ///< "dir": output folder (required)
+  std::filesystem::path dir;                ///< "dir": output folder (required)
   OutputFormat format = OutputFormat::Obj;  ///< "format": "obj"
-  bool per_triangle_csv = false;  ///< "per_triangle_csv": write distortion/<frame>.csv
+  bool per_triangle_csv = false;            ///< "per_triangle_csv": write distortion/<frame>.csv
   /// "timings": run times in summary.csv and report.json; false writes 0 seconds, so that a run
   /// reproduces every output byte.
   bool timings = true;

@@ -1,9 +1,9 @@
 #include "pipeline/report.hpp"
 
+#include <oneapi/tbb/version.h>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
-#include <oneapi/tbb/version.h>
 
 #include "io/csv.hpp"
 
@@ -17,16 +17,31 @@ using json = nlohmann::json;
 namespace {
 
 // Finite numbers as JSON numbers; infinity and NaN as the strings CSV uses ("inf", "nan").
-json number(double x) { return std::isfinite(x) ? json(x) : json(format_number(x)); }
+json number(double x) {
+  return std::isfinite(x) ? json(x) : json(format_number(x));
+}
 
 }  // namespace
 
 std::vector<std::string> summary_columns() {
-  return {"frame",           "file",           "vertices",          "triangles",
-          "shear_max_before", "shear_mean_before", "shear_p95_before", "shear_max_after",
-          "shear_mean_after", "shear_p95_after", "dist_out_to_in_max", "dist_out_to_in_rms",
-          "dist_in_to_out_max", "dist_in_to_out_rms", "iterations",    "seconds",
-          "status",           "failure"};
+  return {"frame",
+          "file",
+          "vertices",
+          "triangles",
+          "shear_max_before",
+          "shear_mean_before",
+          "shear_p95_before",
+          "shear_max_after",
+          "shear_mean_after",
+          "shear_p95_after",
+          "dist_out_to_in_max",
+          "dist_out_to_in_rms",
+          "dist_in_to_out_max",
+          "dist_in_to_out_rms",
+          "iterations",
+          "seconds",
+          "status",
+          "failure"};
 }
 
 std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool timings) {
@@ -50,21 +65,21 @@ std::string format_distortion_csv(const Eigen::VectorXd& before, const Eigen::Ve
 }
 
 json version_info() {
-  return {{"seqmassage", SEQMASSAGE_VERSION},
-          {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +
-                        "." + std::to_string(EIGEN_MINOR_VERSION)},
-          {"onetbb", std::to_string(TBB_VERSION_MAJOR) + "." + std::to_string(TBB_VERSION_MINOR)},
-          {"nlohmann_json", std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." +
-                                std::to_string(NLOHMANN_JSON_VERSION_MINOR) + "." +
-                                std::to_string(NLOHMANN_JSON_VERSION_PATCH)},
 #if defined(__clang__)
-          {"compiler", "clang " __clang_version__}
+  const std::string compiler = "clang " __clang_version__;
 #elif defined(__GNUC__)
-          {"compiler", "gcc " __VERSION__}
+  const std::string compiler = "gcc " __VERSION__;
 #else
-          {"compiler", "unknown"}
+  const std::string compiler = "unknown";
 #endif
-  };
+  const auto dotted = [](int a, int b) { return std::to_string(a) + "." + std::to_string(b); };
+  return {{"seqmassage", SEQMASSAGE_VERSION},
+          {"eigen", dotted(EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION) + "." +
+                        std::to_string(EIGEN_MINOR_VERSION)},
+          {"onetbb", dotted(TBB_VERSION_MAJOR, TBB_VERSION_MINOR)},
+          {"nlohmann_json", dotted(NLOHMANN_JSON_VERSION_MAJOR, NLOHMANN_JSON_VERSION_MINOR) + "." +
+                                std::to_string(NLOHMANN_JSON_VERSION_PATCH)},
+          {"compiler", compiler}};
 }
 
 json make_report(const SequencePlan& plan, const SequenceResult& result) {
@@ -94,21 +109,24 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
     in_to_out = std::max(in_to_out, f.in_to_out.max);
   }
   const double n = std::max<size_t>(1, result.frames.size());
-  r["totals"] = {
-      {"frames_listed", plan.frames.size()},
-      {"frames_selected", plan.selected.size()},
-      {"frames_written", result.frames.size()},
-      {"optimized", optimized},
-      {"template_unchanged", unchanged},
-      {"failed", result.failed},
-      {"iterations", iterations},
-      {"shear_before", {{"max", number(max_before)}, {"mean_of_means", number(mean_before / n)},
-                        {"mean_of_p95", number(p95_before / n)}}},
-      {"shear_after", {{"max", number(max_after)}, {"mean_of_means", number(mean_after / n)},
-                       {"mean_of_p95", number(p95_after / n)}}},
-      {"dist_out_to_in_max", number(out_to_in)},
-      {"dist_in_to_out_max", number(in_to_out)},
-      {"hausdorff_max", number(std::max(out_to_in, in_to_out))}};
+  r["totals"] = {{"frames_listed", plan.frames.size()},
+                 {"frames_selected", plan.selected.size()},
+                 {"frames_written", result.frames.size()},
+                 {"optimized", optimized},
+                 {"template_unchanged", unchanged},
+                 {"failed", result.failed},
+                 {"iterations", iterations},
+                 {"shear_before",
+                  {{"max", number(max_before)},
+                   {"mean_of_means", number(mean_before / n)},
+                   {"mean_of_p95", number(p95_before / n)}}},
+                 {"shear_after",
+                  {{"max", number(max_after)},
+                   {"mean_of_means", number(mean_after / n)},
+                   {"mean_of_p95", number(p95_after / n)}}},
+                 {"dist_out_to_in_max", number(out_to_in)},
+                 {"dist_in_to_out_max", number(in_to_out)},
+                 {"hausdorff_max", number(std::max(out_to_in, in_to_out))}};
   r["interrupted"] = result.interrupted;
 
   if (plan.synthetic) {
@@ -145,11 +163,11 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
                   {"distortion", c.output.per_triangle_csv ? json("distortion/") : json(nullptr)},
                   {"summary", "summary.csv"}};
   if (c.output.timings)
-    r["run"] = {{"threads", plan.threads},
-                {"frames_in_flight", plan.frames_in_flight},
-                {"seconds", result.seconds},
-                {"frames_per_second", result.seconds > 0 ? result.frames.size() / result.seconds
-                                                         : 0.0}};
+    r["run"] = {
+        {"threads", plan.threads},
+        {"frames_in_flight", plan.frames_in_flight},
+        {"seconds", result.seconds},
+        {"frames_per_second", result.seconds > 0 ? result.frames.size() / result.seconds : 0.0}};
   return r;
 }
 

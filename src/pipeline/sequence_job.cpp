@@ -77,7 +77,11 @@ void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
 void check_outputs(const SequencePlan& plan) {
   const JobConfig& c = plan.config;
   std::set<fs::path> inputs;
-  auto canonical = [](const fs::path& p) { return fs::weakly_canonical(p).lexically_normal(); };
+  auto canonical = [](const fs::path& p) {
+    std::error_code ec;  // a path that cannot be resolved is compared as written
+    const fs::path resolved = fs::weakly_canonical(p, ec);
+    return (ec ? fs::absolute(p) : resolved).lexically_normal();
+  };
   for (int index : plan.selected) inputs.insert(canonical(plan.frames[index]));
   if (plan.template_frame >= 0) inputs.insert(canonical(plan.frames[plan.template_frame]));
   if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
@@ -113,8 +117,8 @@ struct Work {
   int index = 0;
   std::string bytes;  // the input file as read
   bool unchanged = false;
-  std::string obj;    // the corrected frame (unless unchanged)
-  std::string csv;    // per-triangle distortion (if asked)
+  std::string obj;  // the corrected frame (unless unchanged)
+  std::string csv;  // per-triangle distortion (if asked)
   FrameSummary summary;
 };
 
@@ -177,9 +181,12 @@ void process_frame(const SequencePlan& plan, Work& w) {
 
 const char* status_name(FrameStatus status) {
   switch (status) {
-    case FrameStatus::Optimized: return "optimized";
-    case FrameStatus::Template: return "template";
-    case FrameStatus::Failed: return "failed";
+    case FrameStatus::Optimized:
+      return "optimized";
+    case FrameStatus::Template:
+      return "template";
+    case FrameStatus::Failed:
+      return "failed";
   }
   return "";
 }
@@ -212,16 +219,16 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
     plan.template_frame = c.templ.frame;
     plan.template_source = frame_label(plan, plan.template_frame);
     if (plan.synthetic)
-      plan.templ = TriMesh{synthetic_frame(*plan.synthetic, plan.template_frame).drifted,
-                           plan.synthetic->F};
+      plan.templ =
+          TriMesh{synthetic_frame(*plan.synthetic, plan.template_frame).drifted, plan.synthetic->F};
     else
       plan.templ = read_obj(plan.frames[plan.template_frame]).mesh;
   } else {
     plan.template_source = c.templ.mesh.filename().string();
     plan.templ = read_mesh(c.templ.mesh);
   }
-  plan.massager = std::make_shared<const Massager>(plan.templ, c.massage,
-                                                   plan.template_source.c_str());
+  plan.massager =
+      std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
 
   const MeshReport report = check_mesh(plan.templ, plan.massager->topology());
   if (!report.ok_for_optimization())
@@ -248,15 +255,16 @@ std::string describe_plan(const SequencePlan& plan) {
   s << "job: sequence\n";
   if (plan.synthetic) {
     const SyntheticConfig& g = plan.synthetic->config;
-    s << "input: synthetic bending tube, " << g.frames << " frames of "
-      << plan.templ.num_vertices() << " vertices, generated into " << plan.input_dir.string()
-      << " (ground truth in " << plan.ground_truth_dir.string() << ")\n";
+    s << "input: synthetic bending tube, " << g.frames << " frames of " << plan.templ.num_vertices()
+      << " vertices, generated into " << plan.input_dir.string() << " (ground truth in "
+      << plan.ground_truth_dir.string() << ")\n";
   } else {
     s << "input: " << count << " OBJ frames in " << plan.input_dir.string() << "\n";
   }
   s << "frames: " << plan.selected.size() << " selected (" << format_frame_range(c.input.range)
     << "): " << plan.frames[plan.selected.front()].filename().string();
-  if (plan.selected.size() > 1) s << " ... " << plan.frames[plan.selected.back()].filename().string();
+  if (plan.selected.size() > 1)
+    s << " ... " << plan.frames[plan.selected.back()].filename().string();
   s << "\n";
   s << "template: " << plan.template_source << ", " << plan.templ.num_vertices() << " vertices, "
     << plan.templ.num_triangles() << " triangles";
@@ -266,8 +274,8 @@ std::string describe_plan(const SequencePlan& plan) {
   const nlohmann::json m = to_json(c)["massage"];
   const std::string mu = m["mu"].is_string() ? m["mu"].get<std::string>() : m["mu"].dump();
   s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
-    << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>()
-    << ", solver " << m["solver"].get<std::string>() << "\n";
+    << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>() << ", solver "
+    << m["solver"].get<std::string>() << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
   s << "  frames/<name>.obj (" << plan.selected.size() << " files)\n";
@@ -284,8 +292,10 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const fs::path& out = c.output.dir;
   SequenceResult result;
   result.warnings = plan.warnings;
-  if (plan.synthetic) write_synthetic_sequence(*plan.synthetic, plan.input_dir, plan.ground_truth_dir);
-  for (const fs::path& dir : {out, out / "frames", out / "distortion"}) remove_stale_temporaries(dir);
+  if (plan.synthetic)
+    write_synthetic_sequence(*plan.synthetic, plan.input_dir, plan.ground_truth_dir);
+  for (const fs::path& dir : {out, out / "frames", out / "distortion"})
+    remove_stale_temporaries(dir);
 
   const size_t total = plan.selected.size();
   size_t next = 0;

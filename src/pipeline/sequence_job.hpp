@@ -45,8 +45,8 @@ struct FrameSummary {
   int iterations = 0;              ///< outer iterations run
   double seconds = 0.0;            ///< optimization and measures of this frame
   FrameStatus status = FrameStatus::Optimized;
-  std::string failure;             ///< why the frame failed (status Failed)
-  int folded_triangles = 0;        ///< triangles of the output folded over the input surface
+  std::string failure;       ///< why the frame failed (status Failed)
+  int folded_triangles = 0;  ///< triangles of the output folded over the input surface
   std::optional<GroundTruthError> ground_truth;  ///< synthetic input only
 };
 

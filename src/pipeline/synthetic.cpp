@@ -22,11 +22,11 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
 }
 
 struct Wave {
-  int k_around;      // whole cycles around the tube (the field is periodic in the angle)
-  double k_along;    // cycles along the tube
-  double phase;      // radians
-  double speed;      // cycles over the whole sequence
-  double a_around;   // amplitude factors of the two tangential directions
+  int k_around;     // whole cycles around the tube (the field is periodic in the angle)
+  double k_along;   // cycles along the tube
+  double phase;     // radians
+  double speed;     // cycles over the whole sequence
+  double a_around;  // amplitude factors of the two tangential directions
   double a_along;
 };
 
@@ -62,11 +62,13 @@ Vec3 bent_point(double theta, double s, double r, double kappa) {
 SyntheticSequence make_synthetic_sequence(const SyntheticConfig& config) {
   if (config.frames < 2 || config.segments < 3 || config.rings < 1 || !(config.radius > 0.0) ||
       !(config.length > 0.0))
-    throw ConfigError("input.synthetic: needs frames >= 2, segments >= 3, rings >= 1 and a "
-                      "positive radius and length");
+    throw ConfigError(
+        "input.synthetic: needs frames >= 2, segments >= 3, rings >= 1 and a "
+        "positive radius and length");
   if (config.bend * M_PI / 180.0 * config.radius >= config.length)
-    throw ConfigError("input.synthetic.bend: the tube would fold onto itself (bend in radians "
-                      "times radius must stay below length)");
+    throw ConfigError(
+        "input.synthetic.bend: the tube would fold onto itself (bend in radians "
+        "times radius must stay below length)");
   SyntheticSequence seq;
   seq.config = config;
   const int nu = config.segments;
@@ -109,8 +111,8 @@ SyntheticFrame synthetic_frame(const SyntheticSequence& seq, int t) {
     const double s = c.length * (v / nu) / c.rings;
     double d_around = 0.0, d_along = 0.0;  // arc lengths
     for (const Wave& w : waves) {
-      const double arg = w.k_around * theta + 2.0 * M_PI * (w.k_along * s / c.length + w.speed * tau) +
-                         w.phase;
+      const double arg =
+          w.k_around * theta + 2.0 * M_PI * (w.k_along * s / c.length + w.speed * tau) + w.phase;
       d_around += w.a_around * std::sin(arg);
       d_along += w.a_along * std::sin(arg);
     }

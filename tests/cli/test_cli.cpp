@@ -55,7 +55,9 @@ SyntheticConfig tube(int frames = 5, int segments = 12) {
   return c;
 }
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
 
 std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
   std::vector<std::vector<std::string>> rows;
@@ -79,8 +81,10 @@ struct Fixture {
   }
   void config(const std::string& file, const std::string& out, const std::string& extra = "") {
     write_text(dir / file, R"({"job": "sequence", "input": {"frames": "in"},
-      "output": {"dir": ")" + out + R"(", "per_triangle_csv": true, "timings": false},
-      "massage": {"iterations": 8})" + extra + "}");
+      "output": {"dir": ")" + out +
+                               R"(", "per_triangle_csv": true, "timings": false},
+      "massage": {"iterations": 8})" +
+                               extra + "}");
   }
 };
 
@@ -90,10 +94,11 @@ TEST_CASE("--help documents the options and exit codes, --version the version") 
   test::TempFolder dir("cli_help");
   const Run help = seqmassage(dir.path(), "--help");
   CHECK(help.code == 0);
-  for (const char* text : {"Usage: seqmassage [options] CONFIG.json", "--threads N",
-                           "--frames A:B[:STEP]", "--dry-run", "--quiet", "Exit status:",
-                           "  0    every frame", "  2    usage or config error", "  3    input error",
-                           "  4    I/O error", "  5    processing error", "  130  interrupted"})
+  for (const char* text :
+       {"Usage: seqmassage [options] CONFIG.json", "--threads N", "--frames A:B[:STEP]",
+        "--dry-run", "--quiet", "Exit status:", "  0    every frame",
+        "  2    usage or config error", "  3    input error", "  4    I/O error",
+        "  5    processing error", "  130  interrupted"})
     CHECK_THAT(help.out, Catch::Contains(text));
   const Run version = seqmassage(dir.path(), "--version");
   CHECK(version.code == 0);
@@ -116,11 +121,22 @@ TEST_CASE("a run writes the documented outputs, and corrects the frames") {
   CHECK(fs::exists(f.dir / "out/report.json"));
   const auto summary = read_csv(f.dir / "out/summary.csv");
   REQUIRE(summary.size() == 6);
-  const std::vector<std::string> documented = {
-      "frame", "file", "vertices", "triangles", "shear_max_before", "shear_mean_before",
-      "shear_p95_before", "shear_max_after", "shear_mean_after", "shear_p95_after",
-      "dist_out_to_in_max", "dist_out_to_in_rms", "dist_in_to_out_max", "dist_in_to_out_rms",
-      "iterations", "seconds"};
+  const std::vector<std::string> documented = {"frame",
+                                               "file",
+                                               "vertices",
+                                               "triangles",
+                                               "shear_max_before",
+                                               "shear_mean_before",
+                                               "shear_p95_before",
+                                               "shear_max_after",
+                                               "shear_mean_after",
+                                               "shear_p95_after",
+                                               "dist_out_to_in_max",
+                                               "dist_out_to_in_rms",
+                                               "dist_in_to_out_max",
+                                               "dist_in_to_out_rms",
+                                               "iterations",
+                                               "seconds"};
   CHECK(std::vector<std::string>(summary[0].begin(), summary[0].begin() + 16) == documented);
   double before = 0, after = 0;
   for (int t = 1; t <= 5; ++t) {
@@ -175,8 +191,9 @@ TEST_CASE("bad configs exit with code 2, name the key and write nothing") {
   };
   for (const Case& c : cases) {
     // The Fixture's config has "massage"; these replace it.
-    std::string text = R"({"job": "sequence", "input": {"frames": "in"}, "output": {"dir": "out"})" +
-                       c.extra + "}";
+    std::string text =
+        R"({"job": "sequence", "input": {"frames": "in"}, "output": {"dir": "out"})" + c.extra +
+        "}";
     write_text(f.dir / "job.json", text);
     const Run r = seqmassage(f.dir.path(), "job.json");
     INFO(text);

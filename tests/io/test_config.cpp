@@ -14,7 +14,9 @@ namespace {
 
 const fs::path kBase = "/data/project/configs";
 
-JobConfig parse(const std::string& text) { return parse_config(parse_json_strict(text), kBase); }
+JobConfig parse(const std::string& text) {
+  return parse_config(parse_json_strict(text), kBase);
+}
 
 // The message of the ConfigError that parsing `text` throws ("" if none).
 std::string config_error(const std::string& text) {
@@ -168,8 +170,7 @@ TEST_CASE("wrong types and out-of-range values name the key and the value") {
         "output.dir: expected a path (a non-empty string), got \"\"");
   CHECK(config_error(with("output", R"({"dir": "o", "format": "gltf"})")) ==
         "output.format: expected \"obj\", got \"gltf\"");
-  CHECK(config_error(with("job", R"("remesh")")) ==
-        "job: expected \"sequence\", got \"remesh\"");
+  CHECK(config_error(with("job", R"("remesh")")) == "job: expected \"sequence\", got \"remesh\"");
   CHECK(config_error("[1, 2]") == "config: expected an object, got an array");
 }
 
@@ -215,7 +216,8 @@ TEST_CASE("strict JSON: comments, duplicate keys and syntax errors are refused")
   CHECK(error(R"({"massage": {"iterations": 3, "iterations": 4}})") ==
         "massage.iterations: duplicate key (each key may appear once)");
   CHECK(error(R"({"job": 1, "job": 2})") == "job: duplicate key (each key may appear once)");
-  CHECK(error(R"({"a": [{"b": 1, "b": 2}]})") == "a[0].b: duplicate key (each key may appear once)");
+  CHECK(error(R"({"a": [{"b": 1, "b": 2}]})") ==
+        "a[0].b: duplicate key (each key may appear once)");
   const std::string trailing = error("{\"job\": 1} x");
   CHECK(trailing.rfind("line 1, column 12: ", 0) == 0);
   const std::string comma = error("{\"job\": 1,}");

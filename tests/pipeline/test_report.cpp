@@ -35,11 +35,22 @@ TEST_CASE("CSV fields are quoted only when needed") {
 }
 
 TEST_CASE("summary.csv has the documented columns, in order") {
-  const std::vector<std::string> documented = {
-      "frame", "file", "vertices", "triangles", "shear_max_before", "shear_mean_before",
-      "shear_p95_before", "shear_max_after", "shear_mean_after", "shear_p95_after",
-      "dist_out_to_in_max", "dist_out_to_in_rms", "dist_in_to_out_max", "dist_in_to_out_rms",
-      "iterations", "seconds"};
+  const std::vector<std::string> documented = {"frame",
+                                               "file",
+                                               "vertices",
+                                               "triangles",
+                                               "shear_max_before",
+                                               "shear_mean_before",
+                                               "shear_p95_before",
+                                               "shear_max_after",
+                                               "shear_mean_after",
+                                               "shear_p95_after",
+                                               "dist_out_to_in_max",
+                                               "dist_out_to_in_rms",
+                                               "dist_in_to_out_max",
+                                               "dist_in_to_out_rms",
+                                               "iterations",
+                                               "seconds"};
   const std::vector<std::string> columns = summary_columns();
   REQUIRE(columns.size() == documented.size() + 2);
   CHECK(std::vector<std::string>(columns.begin(), columns.begin() + 16) == documented);

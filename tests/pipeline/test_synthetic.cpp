@@ -43,7 +43,8 @@ TEST_CASE("the synthetic sequence is deterministic") {
   }
   SyntheticConfig other = small_config();
   other.seed = 2;
-  CHECK(synthetic_frame(make_synthetic_sequence(other), 4).drifted != synthetic_frame(a, 4).drifted);
+  CHECK(synthetic_frame(make_synthetic_sequence(other), 4).drifted !=
+        synthetic_frame(a, 4).drifted);
 }
 
 TEST_CASE("frame 0 is the straight, undrifted tube") {
@@ -67,8 +68,8 @@ TEST_CASE("drifted vertices slide on the bent tube's surface, not at its ends") 
   CHECK(moved.maxCoeff() > 0.2 * h);
   CHECK(moved.maxCoeff() < 2.0 * c.drift * h);
   for (int i = 0; i < c.segments; ++i) {
-    CHECK(moved[i] < 1e-12);                          // first ring
-    CHECK(moved[c.rings * c.segments + i] < 1e-12);   // last ring
+    CHECK(moved[i] < 1e-12);                         // first ring
+    CHECK(moved[c.rings * c.segments + i] < 1e-12);  // last ring
   }
 }
 
