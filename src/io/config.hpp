@@ -161,7 +161,7 @@ struct MeshJobConfig {
 };
 
 /// The defaults of "massage" for a single-mesh job: MassageOptions' own for remesh and
-/// crossparam; for smooth, uniform weights, 60 iterations and edge samples (see README).
+/// crossparam; for smooth, uniform weights, 60 iterations, edge samples and μ = 0.7 (see README).
 MassageOptions default_massage_options(JobKind job);
 
 /// Any job's configuration.

@@ -79,7 +79,10 @@ TEST_CASE("defaults: MassageOptions' for remesh and crossparam, uniform weights 
   CHECK(s.massage.weights == WeightKind::Uniform);
   CHECK(s.massage.iterations == 60);
   CHECK(s.massage.samples == SampleKind::Edges);
+  REQUIRE(s.massage.mu);
+  CHECK(*s.massage.mu == 0.7);
   CHECK(s.massage.iterations == default_massage_options(JobKind::Smooth).iterations);
+  CHECK_FALSE(parse(with(kSmooth, "massage", R"({"mu": "auto"})")).massage.mu);
   // Smoothing with mean value weights on request.
   CHECK(parse(with(kSmooth, "massage", R"({"weights": "mean_value"})")).massage.weights ==
         WeightKind::MeanValue);
