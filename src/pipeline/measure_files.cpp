@@ -14,6 +14,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+bool same_connectivity(const TriMesh& a, const TriMesh& b) {
+  return a.num_vertices() == b.num_vertices() && a.num_triangles() == b.num_triangles() &&
+         a.F == b.F;
+}
+
 std::string counts(const TriMesh& m) {
   return std::to_string(m.num_vertices()) + " vertices, " + std::to_string(m.num_triangles()) +
          " triangles";
@@ -35,12 +40,12 @@ MeasureFilesResult measure_files(const MeasureFilesRequest& r) {
   std::string template_note;
   if (!r.templ.empty()) {
     templ = read_mesh(r.templ);
-    if (templ->num_vertices() != mesh.num_vertices() || templ->F != mesh.F)
+    if (!same_connectivity(*templ, mesh))
       throw InputError(r.templ.string() + ": --template needs the connectivity of " +
                        r.mesh.string() + " (" + counts(mesh) + " in the same order); it has " +
                        counts(*templ));
     template_note = r.templ.string();
-  } else if (reference.num_vertices() == mesh.num_vertices() && reference.F == mesh.F) {
+  } else if (same_connectivity(reference, mesh)) {
     templ = reference;
     template_note = "N (it has M's connectivity)";
   }

@@ -300,9 +300,9 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
   inputs["reference"] = counts(plan.reference);
   inputs["reference"]["file"] =
       c.job == JobKind::Remesh ? json(c.input.reference.string()) : json("the mesh as loaded");
-  inputs["reference"]["radius_ratio"] = {
-      {"min", number(summarize_quality(radius_ratio(plan.reference)).min)},
-      {"mean", number(summarize_quality(radius_ratio(plan.reference)).mean)}};
+  const QualitySummary reference_quality = summarize_quality(radius_ratio(plan.reference));
+  inputs["reference"]["radius_ratio"] = {{"min", number(reference_quality.min)},
+                                         {"mean", number(reference_quality.mean)}};
   inputs["template"] = counts(plan.templ);
   inputs["template"]["file"] =
       c.job == JobKind::Crossparam ? json(c.template_mesh.string()) : json("the mesh itself");
