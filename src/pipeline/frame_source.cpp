@@ -15,7 +15,7 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string seconds_text(double t) {
+std::string short_number(double t) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", t);
   return buffer;
@@ -119,8 +119,8 @@ class GltfSource : public FrameSource {
   std::string describe() const override {
     const GltfSequence& s = sequence_;
     std::string text = "glTF " + what() + ", " + std::to_string(size()) + " frames ";
-    text += options_.fps ? "at " + seconds_text(*options_.fps) + " fps" : "at the keyframe times";
-    text += " (" + seconds_text(s.times.front()) + " to " + seconds_text(s.times.back()) + " s); " +
+    text += options_.fps ? "at " + short_number(*options_.fps) + " fps" : "at the keyframe times";
+    text += " (" + short_number(s.times.front()) + " to " + short_number(s.times.back()) + " s); " +
             std::to_string(s.gltf_vertices) + " glTF vertices welded to " +
             std::to_string(s.rest.num_vertices()) + " (" + std::to_string(s.welded_vertices) +
             " split copies merged";
@@ -169,7 +169,7 @@ class GltfSource : public FrameSource {
       if (!f.V.row(v).allFinite())
         throw InputError(
             "'" + sequence_.file.string() + "': " + element("animations", sequence_.animation) +
-            " at t = " + seconds_text(sequence_.times[size_t(i)]) + " s (frame " +
+            " at t = " + short_number(sequence_.times[size_t(i)]) + " s (frame " +
             std::to_string(i) + "): " + element("meshes", sequence_.mesh) +
             " evaluates to a non-finite position at welded vertex " + std::to_string(v));
     }
@@ -179,7 +179,7 @@ class GltfSource : public FrameSource {
     if (f.separated_vertices > 0)
       frame.warnings.push_back(
           std::to_string(f.separated_vertices) +
-          " welded vertices whose glTF copies lie apart (up to " + seconds_text(f.max_separation) +
+          " welded vertices whose glTF copies lie apart (up to " + short_number(f.max_separation) +
           "; their skin weights or morph targets differ): each gets the mean of its copies");
     return frame;
   }
@@ -206,13 +206,9 @@ class GltfSource : public FrameSource {
 
 }  // namespace
 
-std::optional<double> FrameSource::time(int) const {
-  return std::nullopt;
-}
-
 std::string FrameSource::label(int i) const {
   std::string text = "frame " + std::to_string(i) + " (" + name(i);
-  if (const auto t = time(i)) text += ", t = " + seconds_text(*t) + " s";
+  if (const auto t = time(i)) text += ", t = " + short_number(*t) + " s";
   return text + ")";
 }
 

@@ -38,7 +38,7 @@ class FrameSource {
   /// OBJ output gets). summary.csv's `file`; output files are named after it.
   virtual std::string name(int i) const = 0;
   /// The frame's time in seconds, for an animation (glTF); nothing otherwise.
-  virtual std::optional<double> time(int i) const;
+  virtual std::optional<double> time(int /*i*/) const { return std::nullopt; }
   /// The frame in messages: "frame 7 (frame_0007.obj)", with the time if it has one.
   std::string label(int i) const;
   /// One line for the plan, e.g. "15 OBJ frames in captures/take1".

@@ -342,3 +342,22 @@ TEST_CASE("edit distance") {
   CHECK(edit_distance("same", "same") == 0);
   CHECK(edit_distance("strat", "start") == 1);  // a transposition counts once
 }
+
+TEST_CASE("every example config in configs/ parses") {
+  const fs::path configs = fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "configs";
+  int parsed = 0;
+  for (const auto& entry : fs::directory_iterator(configs)) {
+    if (entry.path().extension() != ".json") continue;
+    INFO(entry.path().string());
+    const JobConfig c = load_config(entry.path());
+    CHECK(c.output.dir.is_absolute());
+    ++parsed;
+  }
+  CHECK(parsed >= 3);  // demo, the crane folder, CesiumMan glTF
+  const JobConfig man = load_config(configs / "gltf_cesiumman.json");
+  REQUIRE(man.input.gltf);
+  CHECK(man.input.gltf->file ==
+        (configs / "../../shared/data/gltf/skinned/CesiumMan/glTF-Binary/CesiumMan.glb")
+            .lexically_normal());
+  CHECK(man.output.format == OutputFormat::Gltf);
+}
