@@ -291,51 +291,19 @@ TEST_CASE("bad glTF inputs are refused before anything is written, naming file a
 // ---------------------------------------------------------------------------------------------
 // Every real model of ../shared/data/gltf (data/README.md §2), when present.
 
-namespace {
-
-const fs::path kGltfDir = fs::path(SEQMASSAGE_SHARED_DATA_DIR) / "gltf";
-
-struct Model {
-  const char* file;    ///< under kGltfDir
-  int boundary_loops;  ///< of the welded mesh: only the two minimal models are open
-};
-
-const Model kModels[] = {
-    {"skinned/CesiumMan/glTF-Binary/CesiumMan.glb", 0},
-    {"skinned/RiggedSimple/glTF-Binary/RiggedSimple.glb", 0},
-    {"skinned/RiggedFigure/glTF-Binary/RiggedFigure.glb", 0},
-    {"skinned/Fox/glTF-Binary/Fox.glb", 0},
-    {"skinned/SimpleSkin/glTF/SimpleSkin.gltf", 1},  // a strip of 8 triangles
-    {"morph/AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb", 0},
-    {"morph/AnimatedMorphSphere/glTF-Binary/AnimatedMorphSphere.glb", 0},
-    {"morph/MorphStressTest/glTF-Binary/MorphStressTest.glb", 0},
-    {"morph/SimpleMorph/glTF/SimpleMorph.gltf", 1},  // one triangle
-};
-
-const char* const kStaticModels[] = {
-    "static/Box/glTF-Binary/Box.glb", "static/BoxTextured/glTF-Binary/BoxTextured.glb",
-    "morph/MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb",  // morph targets, no animation
-};
-
-bool have_data() {
-  if (fs::is_directory(kGltfDir)) return true;
-  WARN("skipped: the shared glTF models are not at " << kGltfDir.string());
-  return false;
-}
-
-}  // namespace
-
 TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]") {
-  if (!have_data()) return;
+  if (!test::have_shared_gltf()) return;
   test::TempFolder dir("gltf_real_job");
-  for (const Model& model : kModels) {
+  for (const test::SharedGltfModel& model : test::kSharedGltfModels) {
     INFO(model.file);
-    JobConfig c = gltf_job(kGltfDir / model.file, dir / "out", OutputFormat::Gltf);
+    JobConfig c = gltf_job(test::shared_gltf_dir() / model.file, dir / "out", OutputFormat::Gltf);
     c.massage.iterations = 4;
     c.output.per_triangle_csv = false;
     const int frames = load_gltf_sequence(*c.input.gltf).num_frames();
     c.input.range.step = std::max(1, frames / 12);  // about a dozen frames per model
     const SequencePlan plan = plan_sequence_job(c);
+    CHECK(plan.templ.num_vertices() == model.welded_vertices);
+    CHECK(plan.templ.num_triangles() == model.triangles);
     const Topology topo = build_topology(plan.templ);
     CHECK(topo.is_manifold());
     CHECK(int(topo.boundary_loops.size()) == model.boundary_loops);
@@ -358,10 +326,11 @@ TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]")
 }
 
 TEST_CASE("real glTF models with several primitives give one OBJ group per primitive", "[data]") {
-  if (!have_data()) return;
+  if (!test::have_shared_gltf()) return;
   test::TempFolder dir("gltf_real_obj");
-  JobConfig c = gltf_job(kGltfDir / "morph/MorphStressTest/glTF-Binary/MorphStressTest.glb",
-                         dir / "out", OutputFormat::Obj);
+  JobConfig c =
+      gltf_job(test::shared_gltf_dir() / "morph/MorphStressTest/glTF-Binary/MorphStressTest.glb",
+               dir / "out", OutputFormat::Obj);
   c.massage.iterations = 2;
   c.input.range = {0, 2, 1};
   run_sequence_job(plan_sequence_job(c));
@@ -373,12 +342,13 @@ TEST_CASE("real glTF models with several primitives give one OBJ group per primi
 }
 
 TEST_CASE("static real glTF models are a clear 'no animation' error, nothing written", "[data]") {
-  if (!have_data()) return;
+  if (!test::have_shared_gltf()) return;
   test::TempFolder dir("gltf_real_static");
-  for (const char* file : kStaticModels) {
+  for (const char* file : test::kStaticGltfModels) {
     INFO(file);
-    const std::string message = error_of(
-        [&] { plan_sequence_job(gltf_job(kGltfDir / file, dir / "out", OutputFormat::Gltf)); });
+    const std::string message = error_of([&] {
+      plan_sequence_job(gltf_job(test::shared_gltf_dir() / file, dir / "out", OutputFormat::Gltf));
+    });
     CHECK_THAT(message, Contains(file) && Contains("no animation"));
     CHECK_FALSE(fs::exists(dir / "out"));
   }
