@@ -249,6 +249,11 @@ TEST_CASE("bad glTF inputs are refused before anything is written, naming file a
   CHECK_THROWS_AS(plan_sequence_job(gltf_job(dir / "truncated.glb", out, OutputFormat::Gltf)),
                   InputError);
 
+  test::skinned_strip().save(dir / "lost.gltf", false);
+  fs::remove(dir / "lost.bin");
+  CHECK_THAT(plan_error(dir / "lost.gltf"),
+             Contains("lost.gltf") && Contains("buffers[0]") && Contains("not found"));
+
   test::ModelBuilder still = test::skinned_strip();
   still.m.animations.clear();
   still.save(dir / "still.glb", true);
