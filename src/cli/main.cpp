@@ -60,17 +60,22 @@ Options:
                         nothing
   -q, --quiet           no progress and no summary; errors and failed frames only
 
-Outputs (under "output.dir"): for a sequence, frames/<input name>.obj, distortion/<frame>.csv
-(with "per_triangle_csv"), summary.csv (one row per frame) and report.json; for the other jobs,
-<input file name> (in "output.format"), measures.csv (before and after), report.json and, with
-"per_triangle_csv", triangles.csv. --frames applies to sequences only.
+Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
+with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
+
+Outputs (under "output.dir"): for a sequence, frames/<input name>.obj (or, with "format": "gltf",
+sequence.glb), distortion/<frame>.csv (with "per_triangle_csv"), summary.csv (one row per frame)
+and report.json; for the other jobs, <input file name> (in "output.format"), measures.csv (before
+and after), report.json and, with "per_triangle_csv", triangles.csv. --frames applies to
+sequences only.
 
 Exit status:
   0    every frame (or the mesh) was processed
   1    internal error (a bug; please report it)
   2    usage or config error: bad option, missing config file, invalid JSON, unknown key,
        wrong type or out-of-range value, an output folder that would overwrite an input
-  3    input error: a malformed frame or template, frames with different vertex counts or faces
+  3    input error: a malformed frame, template or glTF file (the message names the glTF
+       element), frames with different vertex counts or faces
   4    I/O error: a file or folder cannot be read or written
   5    processing error: some frames failed numerically (reason in summary.csv and on stderr);
        they are written unchanged and the other frames are complete. For a single-mesh job,
@@ -294,7 +299,8 @@ int run(const Args& args) {
     std::cerr << "seqmassage: " << result.frames.size() << " frames in " << fixed(result.seconds, 1)
               << " s (" << result.failed << " failed), mean shear " << fixed(before / n, 4)
               << " -> " << fixed(after / n, 4) << "\n";
-    std::cout << "results: " << shown(out) << "/ (frames/, "
+    const bool glb = plan.config.output.format == sm::OutputFormat::Gltf;
+    std::cout << "results: " << shown(out) << "/ (" << (glb ? "sequence.glb, " : "frames/, ")
               << (plan.config.output.per_triangle_csv ? "distortion/, " : "")
               << "summary.csv, report.json)\n";
   }

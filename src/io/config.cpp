@@ -318,7 +318,7 @@ const Names<SolverKind> kSolvers = {{"iterative", SolverKind::Iterative},
                                     {"direct", SolverKind::Direct}};
 const Names<ClosestPointMode> kClosest = {{"local", ClosestPointMode::Local},
                                           {"exact", ClosestPointMode::Exact}};
-const Names<OutputFormat> kFormats = {{"obj", OutputFormat::Obj}};
+const Names<OutputFormat> kFormats = {{"obj", OutputFormat::Obj}, {"gltf", OutputFormat::Gltf}};
 const std::vector<std::string> kShapes = {"bending_tube"};
 
 void read_massage(const Section& s, MassageOptions& o) {
@@ -373,6 +373,63 @@ void read_synthetic(const Section& s, SyntheticConfig& c) {
          "below length");
 }
 
+// A glTF element chosen by name (a non-empty string) or by index (an integer >= 0); null or
+// absent keeps the default.
+void read_gltf_selector(const Section& s, const std::string& key, std::string& name,
+                        std::optional<int>& index) {
+  const json* v = s.get(key);
+  if (!v || v->is_null()) return;
+  if (v->is_string() && !v->get<std::string>().empty()) {
+    name = v->get<std::string>();
+    return;
+  }
+  if (const auto i = as_integer(*v); i && *i >= 0 && *i <= INT_MAX) {
+    index = static_cast<int>(*i);
+    return;
+  }
+  fail(s.path(key),
+       "expected a name (a non-empty string) or an index (an integer >= 0), got " + describe(*v));
+}
+
+// "input" of the sequence job: exactly one of "frames", "synthetic" and "gltf" (with "mesh",
+// "animation" and "fps", which only a glTF input takes), and "range".
+void read_sequence_input(const Section& input, const fs::path& base, InputConfig& in) {
+  in.frames = read_path(input, "frames", base);
+  if (input.has("synthetic")) {
+    in.synthetic.emplace();
+    read_synthetic(Section(input.get("synthetic"), "input.synthetic",
+                           {"shape", "frames", "segments", "rings", "radius", "length", "bend",
+                            "drift", "seed"}),
+                   *in.synthetic);
+  }
+  if (input.has("gltf")) {
+    GltfInputOptions& g = in.gltf.emplace();
+    g.file = read_path(input, "gltf", base);
+    read_gltf_selector(input, "mesh", g.mesh, g.mesh_index);
+    read_gltf_selector(input, "animation", g.animation, g.animation_index);
+    if (const json* fps = input.get("fps"); fps && !fps->is_null()) {
+      g.fps.emplace();
+      read(input, "fps", *g.fps, Interval{0.0, true, 1e6, false});
+    }
+  } else {
+    for (const char* key : {"mesh", "animation", "fps"})
+      if (input.has(key))
+        fail(input.path(key),
+             "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
+  }
+  const int given = int(input.has("frames")) + int(input.has("synthetic")) + int(input.has("gltf"));
+  if (given == 0)
+    fail("input",
+         "missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated sequence) or "
+         "\"gltf\" (a glTF animation)");
+  if (given > 1) fail("input", "give only one of \"frames\", \"synthetic\" and \"gltf\"");
+  const Section range(input.get("range"), "input.range", {"start", "stop", "step"});
+  read(range, "start", in.range.start, 0);
+  if (const json* stop = range.get("stop"); stop && !stop->is_null())
+    in.range.stop = to_int(*stop, range.path("stop"), in.range.start);
+  read(range, "step", in.range.step, 1);
+}
+
 }  // namespace
 
 // -----------------------------------------------------------------------------------------------
@@ -425,26 +482,12 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   root.require("job", "the kind of job: \"sequence\"");
   read(root, "job", c.job, kJobs);
 
-  const Section input(
-      &root.require("input", "\"frames\": a folder of OBJ frames, or \"synthetic\""), "input",
-      {"frames", "synthetic", "range"});
-  c.input.frames = read_path(input, "frames", base);
-  if (input.has("synthetic")) {
-    c.input.synthetic.emplace();
-    read_synthetic(Section(input.get("synthetic"), "input.synthetic",
-                           {"shape", "frames", "segments", "rings", "radius", "length", "bend",
-                            "drift", "seed"}),
-                   *c.input.synthetic);
-  }
-  if (input.has("frames") == input.has("synthetic"))
-    fail("input", input.has("frames") ? "give \"frames\" or \"synthetic\", not both"
-                                      : "missing \"frames\" (a folder of OBJ frames) or "
-                                        "\"synthetic\" (a generated sequence)");
-  const Section range(input.get("range"), "input.range", {"start", "stop", "step"});
-  read(range, "start", c.input.range.start, 0);
-  if (const json* stop = range.get("stop"); stop && !stop->is_null())
-    c.input.range.stop = to_int(*stop, range.path("stop"), c.input.range.start);
-  read(range, "step", c.input.range.step, 1);
+  read_sequence_input(
+      Section(&root.require("input",
+                            "\"frames\": a folder of OBJ frames, \"synthetic\" or "
+                            "\"gltf\": a glTF animation"),
+              "input", {"frames", "synthetic", "gltf", "mesh", "animation", "fps", "range"}),
+      base, c.input);
 
   const Section templ(root.get("template"), "template", {"frame", "mesh", "optimize"});
   read(templ, "frame", c.templ.frame, 0);
@@ -464,12 +507,23 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   }
 
   const Section output(&root.require("output", "an object with \"dir\", the output folder"),
-                       "output", {"dir", "format", "per_triangle_csv", "timings"});
+                       "output", {"dir", "format", "gltf", "per_triangle_csv", "timings"});
   output.require("dir", "the folder the results are written to");
   c.output.dir = read_path(output, "dir", base);
   read(output, "format", c.output.format, kFormats);
   read(output, "per_triangle_csv", c.output.per_triangle_csv);
   read(output, "timings", c.output.timings);
+  if (c.output.format == OutputFormat::Gltf && !c.input.gltf)
+    fail(output.path("format"),
+         "\"gltf\" needs a glTF input (input.gltf), whose mesh, materials and textures the "
+         "output keeps; use \"obj\" for OBJ frames");
+  if (output.has("gltf")) {
+    if (c.output.format != OutputFormat::Gltf)
+      fail(output.path("gltf"), "only applies to output.format \"gltf\"");
+    const Section gltf(output.get("gltf"), "output.gltf", {"frames_per_mesh", "normals"});
+    read(gltf, "frames_per_mesh", c.output.gltf.frames_per_mesh, 1, 100000);
+    read(gltf, "normals", c.output.gltf.normals);
+  }
 
   read_massage(
       Section(root.get("massage"), "massage",
@@ -491,6 +545,15 @@ json to_json(const JobConfig& c) {
     input["synthetic"] = {{"shape", s.shape}, {"frames", s.frames}, {"segments", s.segments},
                           {"rings", s.rings}, {"radius", s.radius}, {"length", s.length},
                           {"bend", s.bend},   {"drift", s.drift},   {"seed", s.seed}};
+  } else if (c.input.gltf) {
+    const GltfInputOptions& g = *c.input.gltf;
+    const auto selector = [](const std::string& name, const std::optional<int>& index) {
+      return index ? json(*index) : name.empty() ? json(nullptr) : json(name);
+    };
+    input["gltf"] = g.file.string();
+    input["mesh"] = selector(g.mesh, g.mesh_index);
+    input["animation"] = selector(g.animation, g.animation_index);
+    input["fps"] = g.fps ? json(*g.fps) : json(nullptr);
   } else {
     input["frames"] = c.input.frames.string();
   }
@@ -506,6 +569,9 @@ json to_json(const JobConfig& c) {
                  {"format", name_of(c.output.format, kFormats)},
                  {"per_triangle_csv", c.output.per_triangle_csv},
                  {"timings", c.output.timings}};
+  if (c.output.format == OutputFormat::Gltf)
+    j["output"]["gltf"] = {{"frames_per_mesh", c.output.gltf.frames_per_mesh},
+                           {"normals", c.output.gltf.normals}};
   const MassageOptions& m = c.massage;
   j["massage"] = {{"weights", name_of(m.weights, kWeights)},
                   {"boundary_weights", name_of(m.boundary_weights, kBoundary)},

@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/gltf_load.hpp"
+#include "io/gltf_write.hpp"
 #include "massage/massage.hpp"
 
 namespace sm {
@@ -45,12 +47,16 @@ struct FrameRange {
 };
 
 struct InputConfig {
-  /// "frames": folder of OBJ files, one per frame, in natural order. Exactly one of "frames" and
-  /// "synthetic" is given.
+  /// "frames": folder of OBJ files, one per frame, in natural order. Exactly one of "frames",
+  /// "synthetic" and "gltf" is given.
   std::filesystem::path frames;
   /// "synthetic": generate the frames into <output.dir>/input and the clean frames (the ground
   /// truth) into <output.dir>/ground_truth, then process them like a folder.
   std::optional<SyntheticConfig> synthetic;
+  /// "gltf": a glTF 2.0 animation (.gltf or .glb) sampled to frames, with the keys beside it:
+  /// "mesh" (name or index; default: the first skinned, else morphed, else instantiated mesh),
+  /// "animation" (name or index; default 0) and "fps" (> 0; default: the keyframe times).
+  std::optional<GltfInputOptions> gltf;
   FrameRange range;  ///< "range"
 };
 
@@ -61,12 +67,14 @@ struct TemplateConfig {
 };
 
 enum class OutputFormat {
-  Obj,  ///< "obj"
+  Obj,   ///< "obj": frames/<frame name>.obj
+  Gltf,  ///< "gltf": sequence.glb, one morph target per frame (glTF input only)
 };
 
 struct OutputConfig {
   std::filesystem::path dir;                ///< "dir": output folder (required)
-  OutputFormat format = OutputFormat::Obj;  ///< "format": "obj"
+  OutputFormat format = OutputFormat::Obj;  ///< "format": "obj" or "gltf"
+  GltfWriteOptions gltf;                    ///< "gltf": {"frames_per_mesh", "normals"}
   bool per_triangle_csv = false;            ///< "per_triangle_csv": write distortion/<frame>.csv
   /// "timings": run times in summary.csv and report.json; false writes 0 seconds, so that a run
   /// reproduces every output byte.
