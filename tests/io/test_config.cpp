@@ -349,11 +349,14 @@ TEST_CASE("every example config in configs/ parses") {
   for (const auto& entry : fs::directory_iterator(configs)) {
     if (entry.path().extension() != ".json") continue;
     INFO(entry.path().string());
-    const JobConfig c = load_config(entry.path());
-    CHECK(c.output.dir.is_absolute());
+    const AnyJobConfig any = load_any_config(entry.path());
+    const fs::path& dir = std::holds_alternative<JobConfig>(any)
+                              ? std::get<JobConfig>(any).output.dir
+                              : std::get<MeshJobConfig>(any).output.dir;
+    CHECK(dir.is_absolute());
     ++parsed;
   }
-  CHECK(parsed >= 3);  // demo, the crane folder, CesiumMan glTF
+  CHECK(parsed >= 7);  // demo, the crane folder, CesiumMan glTF, the single-mesh jobs
   const JobConfig man = load_config(configs / "gltf_cesiumman.json");
   REQUIRE(man.input.gltf);
   CHECK(man.input.gltf->file ==
