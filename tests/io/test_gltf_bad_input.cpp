@@ -90,5 +90,22 @@ TEST_CASE("glTF: an empty or truncated file names the file", "[gltf][errors]") {
   CHECK_THROWS_WITH(load(cut), Contains("cut.gltf") && Contains("not valid JSON"));
 }
 
+TEST_CASE("glTF: a node's mesh or skin index out of range is named", "[gltf][errors]") {
+  // Found by fuzzing: choosing the default mesh read meshes[node.mesh] unchecked.
+  ScratchDir dir("gltf-node-index");
+  const auto path = dir.path / "bad.glb";
+  for (const char* member : {"mesh", "skin"}) {
+    ModelBuilder b = test::morph_quad();
+    size_t node = 0;
+    while (b.m.nodes[node].mesh < 0) ++node;
+    (std::string(member) == "mesh" ? b.m.nodes[node].mesh : b.m.nodes[node].skin) = 7;
+    b.save(path, true);
+    CHECK_THROWS_AS(load(path), InputError);
+    CHECK_THROWS_WITH(load(path), Contains("bad.glb") &&
+                                      Contains("nodes[" + std::to_string(node) + "]") &&
+                                      Contains(std::string(member) + " 7 does not exist"));
+  }
+}
+
 }  // namespace
 }  // namespace sm
