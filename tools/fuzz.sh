@@ -73,10 +73,11 @@ for t in "${targets[@]}"; do
   runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
   rate="$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)"
   cov="$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)"
+  corp="$(grep -o 'corp: [0-9]*/[0-9]*[a-zA-Z]*' "$log" | tail -1 | cut -d' ' -f2)"
   files="$(find "$corpus" -type f | wc -l)"
-  bytes="$(du -sk "$corpus" | cut -f1)"
-  summary+=("$(printf '%-7s %6ss %10s runs %7s exec/s  cov %6s  corpus %5s files %6s KiB  %s' \
-    "$t" "$seconds" "${runs:-?}" "${rate:-?}" "${cov:-?}" "$files" "$bytes" "$result")")
+  # corpus: libFuzzer's final corpus (units/bytes); files: everything kept in build-fuzz/corpus.
+  summary+=("$(printf '%-7s %5ss %9s runs %6s exec/s  cov %5s  corpus %11s  (%s files)  %s' \
+    "$t" "$seconds" "${runs:-?}" "${rate:-?}" "${cov:-?}" "${corp:-?}" "$files" "$result")")
 done
 printf '%s\n' "${summary[@]}"
 exit "$status"
