@@ -61,11 +61,17 @@ class StrictBuilder {
       error_ = "comments are not allowed in JSON";
       return false;
     }
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: <reason>" -> "<reason>"
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: <reason>" -> "<reason>",
+    // "[json.exception.out_of_range.406] number overflow parsing '1e999'" -> "number overflow ..."
     std::string what = ex.what();
     const size_t column = what.find("column ");
-    const size_t colon = column == std::string::npos ? what.find(": ") : what.find(": ", column);
-    error_ = colon == std::string::npos ? what : what.substr(colon + 2);
+    const size_t colon = column == std::string::npos ? std::string::npos : what.find(": ", column);
+    if (colon != std::string::npos) {
+      what = what.substr(colon + 2);
+    } else if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos) {
+      what = what.substr(what.find("] ") + 2);
+    }
+    error_ = what;
     return false;
   }
 

@@ -96,6 +96,19 @@ GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
   scene->file = load_gltf_file(options.file);
   const GltfFile& file = scene->file;
   const tinygltf::Model& m = file.model;
+  // The rig checks the nodes too, but choosing the mesh reads them first (tinygltf does not
+  // check these indices; found by fuzzing).
+  for (size_t n = 0; n < m.nodes.size(); ++n) {
+    const tinygltf::Node& node = m.nodes[n];
+    if (node.mesh >= int(m.meshes.size())) {
+      throw_gltf_error(file.path, "nodes[" + std::to_string(n) + "]",
+                       "mesh " + std::to_string(node.mesh) + " does not exist");
+    }
+    if (node.skin >= int(m.skins.size())) {
+      throw_gltf_error(file.path, "nodes[" + std::to_string(n) + "]",
+                       "skin " + std::to_string(node.skin) + " does not exist");
+    }
+  }
 
   GltfSequence s;
   s.file = options.file;

@@ -65,6 +65,7 @@ struct Massager::Impl {
   SystemPattern pattern;
   std::vector<unsigned char> pinned;  // n flags
   int num_pinned = 0;
+  std::vector<unsigned char> isolated;  // n flags: vertices in no triangle (also pinned)
 };
 
 Massager::Massager(const TriMesh& templ, MassageOptions options, const char* name)
@@ -84,6 +85,11 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   if (s.options.pin_boundary)
     for (int v = 0; v < n; ++v)
       if (s.topology->is_boundary_vertex[v]) s.pinned[v] = 1;
+  // A vertex in no triangle has no shape to keep and no surface to stay on: it keeps its position
+  // and takes no part in the distance energy (nor in Lawson's normalization).
+  s.isolated.assign(n, 0);
+  for (int v = 0; v < n; ++v)
+    if (s.topology->vertex_triangles.size(v) == 0) s.isolated[v] = s.pinned[v] = 1;
   for (unsigned char p : s.pinned) s.num_pinned += p;
 }
 
@@ -200,7 +206,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     it.exact_queries += update_correspondences(on_m, W, exact, o.walk_max_steps, w_hat);
     it.seconds_closest = seconds_since(t0);
 
-    for (int i = 0; i < n; ++i) d_alpha[i] = std::sqrt(v_hat[i].dist2);
+    for (int i = 0; i < n; ++i) d_alpha[i] = s.isolated[i] ? 0.0 : std::sqrt(v_hat[i].dist2);
     for (int j = 0; j < d_beta.size(); ++j) d_beta[j] = std::sqrt(w_hat[j].dist2);
     multiply(s.pattern.shape_matrix(), M.V, AV);
     it.energy = mu * AV.squaredNorm() +

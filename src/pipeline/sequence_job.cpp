@@ -5,7 +5,10 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <chrono>
+#include <exception>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -378,6 +381,29 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
 
   const size_t total = plan.run_frames.size();
   size_t next = 0;
+  // The first exception of a stage stops the input and is rethrown once the frames in flight have
+  // drained, unwritten: thrown through parallel_pipeline, it would leak them (oneTBB does not
+  // destroy the tokens of a cancelled pipeline).
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  std::atomic<bool> failed{false};
+  const auto record_error = [&] {
+    const std::lock_guard<std::mutex> lock(error_mutex);
+    if (!error) error = std::current_exception();
+    failed = true;
+  };
+  // A stage that runs only while nothing failed and records its exception (what the last stage
+  // returns is dropped).
+  const auto guarded = [&](auto stage) {
+    return [&, stage](std::shared_ptr<Work> w) {
+      if (!failed) try {
+          w = stage(std::move(w));
+        } catch (...) {
+          record_error();
+        }
+      return w;
+    };
+  };
   tbb::task_arena arena(plan.threads);
   arena.execute([&] {
     tbb::parallel_pipeline(
@@ -386,18 +412,19 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
             tbb::filter_mode::serial_in_order,
             [&](tbb::flow_control& fc) -> std::shared_ptr<Work> {
               if (next < total && hooks.cancel && hooks.cancel->load()) result.interrupted = true;
-              if (next >= total || result.interrupted) {
+              if (next >= total || result.interrupted || failed) {
                 fc.stop();
                 return nullptr;
               }
               auto w = std::make_shared<Work>();
               w->index = plan.run_frames[next++];
-              w->bytes = plan.source->fetch(w->index);
-              return w;
+              return guarded([&](std::shared_ptr<Work> w) {
+                w->bytes = plan.source->fetch(w->index);
+                return w;
+              })(std::move(w));
             }) &
             tbb::make_filter<std::shared_ptr<Work>, std::shared_ptr<Work>>(
-                tbb::filter_mode::parallel,
-                [&](std::shared_ptr<Work> w) {
+                tbb::filter_mode::parallel, guarded([&](std::shared_ptr<Work> w) {
                   const std::string input_hash = plan.source->input_hash(w->index, w->bytes);
                   if (c.resume) {
                     w->redo = resume_problem(plan, w->index, input_hash, w->record);
@@ -413,9 +440,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                   w->record.input_hash = input_hash;
                   process_frame(plan, *w);
                   return w;
-                }) &
+                })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
-                tbb::filter_mode::serial_in_order, [&](std::shared_ptr<Work> w) {
+                tbb::filter_mode::serial_in_order, guarded([&](std::shared_ptr<Work> w) {
                   if (w->resumed) {
                     if (w->has_output) writer->keep(w->index);
                     ++result.resumed;
@@ -443,8 +470,10 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                   if (hooks.progress)
                     hooks.progress(result.frames.back(), static_cast<int>(result.frames.size()),
                                    static_cast<int>(total), seconds_since(t0));
-                }));
+                  return w;
+                })));
   });
+  if (error) std::rethrow_exception(error);
   for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
   result.seconds = seconds_since(t0);
   write_file_atomic(out / summary_file_name(c.shard),
