@@ -87,7 +87,8 @@ Exit status:
   2    usage or config error: bad option, missing config file, invalid JSON, unknown key,
        wrong type or out-of-range value, an output folder that would overwrite an input
   3    input error: a malformed frame, template or glTF file (the message names the glTF
-       element), frames with different vertex counts or faces
+       element), frames with different vertex counts or faces; for merge, missing,
+       incomplete or inconsistent shards (named, with the frames concerned)
   4    I/O error: a file or folder cannot be read or written
   5    processing error: some frames failed (the optimizer failed, non-finite positions, or
        more folded triangles than "checks" allow; reason in summary.csv and on stderr); they

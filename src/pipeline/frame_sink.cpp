@@ -14,6 +14,11 @@ using json = nlohmann::json;
 
 namespace {
 
+// positions/<frame name>.bin, relative to output.dir: a frame's corrected positions for the GLB.
+fs::path positions_file(const std::string& frame_name) {
+  return fs::path("positions") / fs::path(frame_name).replace_extension(".bin");
+}
+
 // Writes each frame to its own file under output.dir, atomically; remembers the frames that have
 // one (written or kept), in order.
 class FileWriter : public FrameWriter {
@@ -102,9 +107,7 @@ class GlbSink : public FrameSink {
     out.push_back(config_.output.dir / "sequence.glb");
     return out;
   }
-  fs::path output_file(int index) const override {
-    return fs::path("positions") / fs::path(source_->name(index)).replace_extension(".bin");
-  }
+  fs::path output_file(int index) const override { return positions_file(source_->name(index)); }
   std::string describe(const std::vector<int>& frames) const override {
     const int per_mesh = std::max(1, config_.output.gltf.frames_per_mesh);
     const size_t meshes = (frames.size() + size_t(per_mesh) - 1) / size_t(per_mesh);
@@ -160,8 +163,7 @@ std::vector<std::string> assemble_sequence_glb(const JobConfig& config, const Fr
       glb, written,
       [&](int k) {
         if (k != next++) throw std::logic_error("assemble_sequence_glb: frames read out of order");
-        const fs::path file = config.output.dir / "positions" /
-                              fs::path(source.name(frames[size_t(k)])).replace_extension(".bin");
+        const fs::path file = config.output.dir / positions_file(source.name(frames[size_t(k)]));
         const std::string bytes = read_file(file);
         if (bytes.size() != size_t(n) * 3 * sizeof(double))
           throw IoError("'" + file.string() + "': " + std::to_string(bytes.size()) +
