@@ -70,9 +70,10 @@ struct CheckerOutputOptions {
 struct IterationLogOptions {
   bool enabled = false;
   FrameSelection frames;  ///< "frames": frames logged, default "all"
-  /// "shear_frames": logged frames whose shear is measured after every iteration, by re-running
-  /// the optimizer with 1, 2, ... iterations (about (K + 1) / 2 times the frame's work for K
-  /// iterations); the others get shear at iteration 0 and at the last iteration only.
+  /// "shear_frames": frames whose shear is measured after every iteration (logged even when not
+  /// among "frames"), by re-running the optimizer with 1, 2, ..., K − 1 iterations (about
+  /// (K − 1) / 2 times the frame's work for K iterations); the other logged frames get shear at
+  /// iteration 0 and at the last iteration only.
   FrameSelection shear_frames = FrameSelection::none();
 };
 

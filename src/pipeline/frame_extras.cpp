@@ -199,9 +199,9 @@ std::string FrameExtras::describe(const std::vector<int>& frames) const {
          ")\n";
   if (o.iterations.enabled) {
     const int shear = count_in(o.iterations.shear_frames, frames);
-    s += "  iterations.csv (" + frames_text(count_in(o.iterations.frames, frames)) +
-         "; shear after every iteration for " + frames_text(shear) +
-         (shear > 0 ? ", re-running the optimizer" : "") + ")\n";
+    s += "  iterations.csv (the optimized frames among " +
+         frames_text(count_in(o.iterations.frames, frames)) + "; shear after every iteration for " +
+         frames_text(shear) + (shear > 0 ? ", re-running the optimizer" : "") + ")\n";
   }
   return s;
 }

@@ -83,8 +83,8 @@ TEST_CASE("colored PLY files carry the per-triangle CSV's shear as colours, befo
   CHECK(described.find("colored/{before,after}/<name>.ply (5 frames: shear 0 blue to 0.05") !=
         std::string::npos);
   CHECK(described.find("checker/{before,after}/<name>.obj") != std::string::npos);
-  CHECK(described.find("iterations.csv (5 frames; shear after every iteration for 1 frame") !=
-        std::string::npos);
+  CHECK(described.find("iterations.csv (the optimized frames among 5 frames; shear after every "
+                       "iteration for 1 frame") != std::string::npos);
   run_sequence_job(plan);
   for (int frame : {0, 2, 4}) {
     const std::string name = "frame_000" + std::to_string(frame);
