@@ -13,6 +13,7 @@
 
 #include "io/gltf_load.hpp"
 #include "io/gltf_write.hpp"
+#include "io/output_options.hpp"
 #include "massage/massage.hpp"
 
 namespace sm {
@@ -79,6 +80,9 @@ struct OutputConfig {
   /// "timings": run times in summary.csv and report.json; false writes 0 seconds, so that a run
   /// reproduces every output byte.
   bool timings = true;
+  ColoredOutputOptions colored;    ///< "colored": shear as coloured PLY meshes, before and after
+  CheckerOutputOptions checker;    ///< "checker": frames with a checkerboard texture (OBJ+MTL+PNG)
+  IterationLogOptions iterations;  ///< "iterations": iterations.csv
 };
 
 struct JobConfig {

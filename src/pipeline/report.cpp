@@ -166,6 +166,7 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
                   {"distortion", c.output.per_triangle_csv ? json("distortion/") : json(nullptr)},
                   {"summary", "summary.csv"}};
   r["outputs"].update(plan.sink->report());
+  r["outputs"].update(result.extra_outputs);
   if (c.output.timings)
     r["run"] = {
         {"threads", plan.threads},

@@ -18,6 +18,7 @@
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
+#include "pipeline/frame_extras.hpp"
 #include "pipeline/report.hpp"
 
 namespace sm {
@@ -100,6 +101,7 @@ void check_outputs(const SequencePlan& plan) {
   if (c.output.per_triangle_csv)
     for (int index : plan.selected)
       outputs.push_back(c.output.dir / "distortion" / distortion_csv_name(plan, index));
+  for (fs::path& file : plan.extras->files(plan.selected)) outputs.push_back(std::move(file));
   for (const fs::path& out : outputs)
     if (inputs.count(canonical(out)))
       throw ConfigError("output.dir: writing " + out.string() +
@@ -125,10 +127,11 @@ struct Work {
   std::string bytes;  // what the source fetched (the input file as read, if any)
   std::string out;    // the output frame, encoded by the sink
   std::string csv;    // per-triangle distortion (if asked)
+  ExtraFrame extras;  // colored, checker and iterations outputs (if asked)
   FrameSummary summary;
 };
 
-void process_frame(const SequencePlan& plan, Work& w) {
+void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   const auto t0 = Clock::now();
   const JobConfig& c = plan.config;
   const SourceFrame file = plan.source->decode(w.index, std::move(w.bytes));
@@ -147,14 +150,15 @@ void process_frame(const SequencePlan& plan, Work& w) {
 
   Positions V = file.mesh.V;
   bool unchanged = false;
+  std::optional<Reference> reference;
+  MassageResult result;
   if (w.index == plan.template_frame && !c.templ.optimize) {
     s.status = FrameStatus::Template;
     unchanged = true;
   } else {
     const std::string name = frame_label(plan, w.index);
-    const Reference reference(file.mesh, c.massage.samples, name.c_str(),
-                              plan.massager->shared_topology());
-    const MassageResult result = plan.massager->run(file.mesh.V, reference);
+    reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology());
+    result = plan.massager->run(file.mesh.V, *reference);
     s.iterations = static_cast<int>(result.iterations.size());
     if (!result.ok) {
       s.status = FrameStatus::Failed;
@@ -165,7 +169,7 @@ void process_frame(const SequencePlan& plan, Work& w) {
       s.folded_triangles = result.folded_triangles;
       V = result.V;
       const TriMesh output{V, F};
-      s.out_to_in = one_sided_distance(output, reference.bvh());
+      s.out_to_in = one_sided_distance(output, reference->bvh());
       s.in_to_out = one_sided_distance(file.mesh, TriangleBvh(output));
     }
   }
@@ -174,6 +178,9 @@ void process_frame(const SequencePlan& plan, Work& w) {
   s.shear_before = summarize_distortion(before);
   s.shear_after = summarize_distortion(after);
   if (c.output.per_triangle_csv) w.csv = format_distortion_csv(before, after);
+  if (plan.extras->any())
+    w.extras = extras.encode({w.index, &file, &V, &before, &after, reference ? &result : nullptr,
+                              reference ? &*reference : nullptr});
 
   if (const std::optional<Positions> clean = plan.source->ground_truth(w.index)) {
     const double unit = mean_edge_length(plan.templ);
@@ -207,8 +214,11 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
 
   plan.source = make_frame_source(c);
   plan.sink = make_frame_sink(c, plan.source);
+  plan.extras = std::make_shared<const FrameExtras>(c, plan.source);
   const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
+  for (std::string& warning : plan.extras->check(plan.selected))
+    plan.warnings.push_back(std::move(warning));
 
   if (c.templ.mesh.empty()) {
     if (c.templ.frame >= count)
@@ -267,6 +277,7 @@ std::string describe_plan(const SequencePlan& plan) {
   s << plan.sink->describe(plan.selected);
   if (c.output.per_triangle_csv)
     s << "  distortion/<name>.csv (" << plan.selected.size() << " files)\n";
+  s << plan.extras->describe(plan.selected);
   s << "  summary.csv, report.json\n";
   for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
   return s.str();
@@ -281,7 +292,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   plan.source->prepare();
   for (const fs::path& dir : {out, out / "frames", out / "distortion"})
     remove_stale_temporaries(dir);
+  for (const fs::path& dir : plan.extras->folders()) remove_stale_temporaries(dir);
   const std::unique_ptr<FrameWriter> writer = plan.sink->start();
+  const std::unique_ptr<ExtrasRun> extras = plan.extras->start(plan);
 
   const size_t total = plan.selected.size();
   size_t next = 0;
@@ -329,7 +342,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
             }) &
             tbb::make_filter<std::shared_ptr<Work>, std::shared_ptr<Work>>(
                 tbb::filter_mode::parallel, guarded([&](std::shared_ptr<Work> w) {
-                  process_frame(plan, *w);
+                  process_frame(plan, *extras, *w);
                   return w;
                 })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
@@ -338,8 +351,11 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                   if (c.output.per_triangle_csv)
                     write_file_atomic(out / "distortion" / distortion_csv_name(plan, w->index),
                                       w->csv);
+                  extras->write(w->extras);
                   const FrameSummary& s = w->summary;
                   const std::string who = frame_label(plan, w->index);
+                  if (!w->extras.warning.empty())
+                    result.warnings.push_back(who + ": " + w->extras.warning);
                   for (const std::string& warning : s.warnings)
                     result.warnings.push_back(who + ": " + warning);
                   if (s.status == FrameStatus::Failed) {
@@ -358,6 +374,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   });
   if (error) std::rethrow_exception(error);
   for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
+  result.extra_outputs = extras->finish();
   result.seconds = seconds_since(t0);
   write_file_atomic(out / "summary.csv", format_summary_csv(result.frames, c.output.timings));
   write_file_atomic(out / "report.json", make_report(plan, result).dump(2) + "\n");

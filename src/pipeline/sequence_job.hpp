@@ -20,6 +20,8 @@
 
 namespace sm {
 
+class FrameExtras;
+
 /// What happened to a frame.
 enum class FrameStatus {
   Optimized,  ///< "optimized": massaged and written with its new positions
@@ -59,6 +61,7 @@ struct SequencePlan {
   JobConfig config;
   std::shared_ptr<const FrameSource> source;  ///< every input frame, in order
   std::shared_ptr<const FrameSink> sink;      ///< where the corrected frames go
+  std::shared_ptr<const FrameExtras> extras;  ///< colored, checker and iterations outputs
   std::vector<int> selected;                  ///< indices of the frames to process, in order
   int template_frame = -1;                    ///< index of the template frame, -1 for a mesh
   std::string template_source;                ///< e.g. "frame 0 (frame_0000.obj)"
@@ -76,6 +79,7 @@ struct SequenceResult {
   int failed = 0;
   bool interrupted = false;  ///< stopped by RunHooks::cancel before every frame was done
   double seconds = 0.0;      ///< wall time of the whole run
+  nlohmann::json extra_outputs = nlohmann::json::object();  ///< report.json "outputs" entries
 };
 
 struct RunHooks {
