@@ -34,16 +34,25 @@ bool is_edge(TriangleRegion region) {
 }  // namespace
 
 bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, const Vec3& p,
-                  int start, int max_steps, SurfacePoint& out) {
-  if (start < 0 || start >= F.rows() || topo.num_triangles != F.rows()) {
+                  int start, int max_steps, SurfacePoint& out, const TrianglePlanes* planes) {
+  if (start < 0 || start >= F.rows() || topo.num_triangles != F.rows() ||
+      (planes && planes->size() != F.rows())) {
     std::ostringstream msg;
     msg << "walk_closest: start triangle " << start << " for a mesh of " << F.rows()
-        << " triangles (topology of " << topo.num_triangles << ")";
+        << " triangles (topology of " << topo.num_triangles << ", planes of "
+        << (planes ? planes->size() : -1) << ")";
     throw InputError(msg.str());
   }
   auto test = [&](int t) {
+    if (planes) return planes->closest(t, p, V, F);
     return closest_point_on_triangle(p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(),
                                      V.row(F(t, 2)).transpose());
+  };
+  auto settle = [&](int t, const TrianglePoint& tp) {
+    out.triangle = t;
+    out.bary = tp.bary;
+    out.point = tp.point;
+    out.dist2 = tp.dist2;
   };
 
   int current = start;
@@ -51,13 +60,17 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
   for (int steps = 0;; ++steps) {
     int next = -1;
     TrianglePoint best = here;
+    TrianglePoint tp;
     auto consider = [&](int t) {
       if (t == current) return;
-      const TrianglePoint tp = test(t);
-      if (tp.dist2 < best.dist2) {
-        best = tp;
-        next = t;
+      if (planes) {
+        if (!planes->closer_than(t, p, best.dist2, V, F, tp)) return;
+      } else {
+        tp = test(t);
+        if (!(tp.dist2 < best.dist2)) return;
       }
+      best = tp;
+      next = t;
     };
     auto consider_fan = [&](int v) {
       const Csr& fan = topo.vertex_triangles;
@@ -82,13 +95,13 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
     }
 
     if (next < 0) {
-      out.triangle = current;
-      out.bary = here.bary;
-      out.point = here.point;
-      out.dist2 = here.dist2;
+      settle(current, here);
       return true;
     }
-    if (steps >= max_steps) return false;
+    if (steps >= max_steps) {
+      settle(next, best);  // the closest point seen: an upper bound for the exact query
+      return false;
+    }
     current = next;
     here = best;
   }

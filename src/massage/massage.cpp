@@ -1,8 +1,10 @@
 #include "massage/massage.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "massage/correspondence.hpp"
@@ -55,6 +57,24 @@ void lawson_update(Eigen::VectorXd& alpha, const Eigen::VectorXd& d_alpha, Eigen
   beta = (beta / mean).cwiseMax(floor);
 }
 
+// Each undirected edge of F once, sorted (as mean_edge_length counts them).
+std::vector<std::array<int, 2>> unique_edges(const Triangles& F) {
+  std::vector<uint64_t> keys;
+  keys.reserve(static_cast<size_t>(F.rows()) * 3);
+  for (int t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = static_cast<uint32_t>(F(t, k)), b = static_cast<uint32_t>(F(t, (k + 1) % 3));
+      if (a > b) std::swap(a, b);
+      keys.push_back((uint64_t(a) << 32) | b);
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<std::array<int, 2>> edges(keys.size());
+  for (size_t e = 0; e < keys.size(); ++e)
+    edges[e] = {static_cast<int>(keys[e] >> 32), static_cast<int>(keys[e] & 0xffffffffu)};
+  return edges;
+}
+
 }  // namespace
 
 struct Massager::Impl {
@@ -63,9 +83,32 @@ struct Massager::Impl {
   std::shared_ptr<const Topology> topology;
   ShapeWeights weights;
   SystemPattern pattern;
-  std::vector<unsigned char> pinned;  // n flags
+  TriangleBvh bvh;                        // over the template; copied and refitted per run
+  std::vector<std::array<int, 2>> edges;  // for the mean edge length of M
+  std::vector<unsigned char> pinned;      // n flags
   int num_pinned = 0;
+
+  double mean_edge_length(const Positions& V) const {
+    if (edges.empty()) return 0.0;
+    double sum = 0.0;
+    for (const auto& e : edges) sum += (V.row(e[0]) - V.row(e[1])).norm();
+    return sum / static_cast<double>(edges.size());
+  }
 };
+
+namespace {
+
+// The first triangle around every vertex (-1 for an isolated one): the starting correspondences
+// when M and N share the connectivity (vertex i of M starts on vertex i of N).
+std::vector<SurfacePoint> vertex_hints(const Topology& topo, int count) {
+  std::vector<SurfacePoint> hints(count);
+  for (int i = 0; i < count && i < topo.num_vertices; ++i)
+    if (topo.vertex_triangles.size(i) > 0)
+      hints[i].triangle = topo.vertex_triangles.data[topo.vertex_triangles.begin(i)];
+  return hints;
+}
+
+}  // namespace
 
 Massager::Massager(const TriMesh& templ, MassageOptions options, const char* name)
     : impl_(std::make_unique<Impl>()) {
@@ -79,6 +122,8 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   s.topology = std::make_shared<const Topology>(build_topology(templ));
   s.weights = compute_weights(templ, s.options.weights, s.options.boundary_weights);
   s.pattern = SystemPattern(shape_matrix(s.weights), templ.F);
+  s.bvh = TriangleBvh(templ);
+  s.edges = unique_edges(templ.F);
   s.pinned.assign(n, 0);
   for (int v : s.options.pinned) s.pinned[v] = 1;
   if (s.options.pin_boundary)
@@ -97,6 +142,7 @@ std::shared_ptr<const Topology> Massager::shared_topology() const { return impl_
 const ShapeWeights& Massager::weights() const { return impl_->weights; }
 const Triangles& Massager::triangles() const { return impl_->F; }
 int Massager::num_vertices() const { return impl_->pattern.size(); }
+const TriangleBvh& Massager::template_bvh() const { return impl_->bvh; }
 
 MassageResult Massager::run(const Positions& start, const Reference& reference) const {
   const Impl& s = *impl_;
@@ -116,21 +162,34 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     return result;
   }
 
-  // Per-run state: M's positions and BVH, correspondences both ways, Lawson weights.
+  // Per-run state: M's positions, BVH (the template's tree, refitted only when an exact query on
+  // M needs it) and projection frames; correspondences both ways; Lawson weights.
   TriMesh M{start, s.F};
-  TriangleBvh bvh_m(M);
+  TriangleBvh bvh_m = s.bvh;
+  bool bvh_m_current = false;
+  auto refit_m = [&] {
+    if (!bvh_m_current) bvh_m.refit(M.V);
+    bvh_m_current = true;
+  };
+  TrianglePlanes planes_m(M.V, s.F);
   const TriMesh& N = reference.mesh();
   const Positions& W = reference.samples();
-  const SurfaceView on_n{&N.V, &N.F, &reference.topology(), &reference.bvh()};
-  const SurfaceView on_m{&M.V, &M.F, s.topology.get(), &bvh_m};
+  const SurfaceView on_n{&N.V, &N.F, &reference.topology(), &reference.bvh(), &reference.planes()};
+  const SurfaceView on_m{&M.V, &M.F, s.topology.get(), &bvh_m, &planes_m};
+  // With the same connectivity, vertex i of M and sample i of N (N's vertex i) start at each
+  // other's vertex i: a bound that makes the first, exact queries cheap (free when M starts on N).
   std::vector<SurfacePoint> v_hat, w_hat;  // v̂_i on N, ŵ_j on M
+  if (N.F.rows() == s.F.rows() && N.F == s.F) {
+    v_hat = vertex_hints(*s.topology, n);
+    w_hat = vertex_hints(*s.topology, static_cast<int>(W.rows()));
+  }
   const bool exact = o.closest_points == ClosestPointMode::Exact;
   update_correspondences(on_n, M.V, true, o.walk_max_steps, v_hat);
-  update_correspondences(on_m, W, true, o.walk_max_steps, w_hat);
+  update_correspondences(on_m, W, true, o.walk_max_steps, w_hat, refit_m);
   Eigen::VectorXd alpha = Eigen::VectorXd::Ones(n), beta = Eigen::VectorXd::Ones(W.rows());
   Eigen::VectorXd d_alpha(n), d_beta(W.rows());
 
-  const double move_limit = o.tolerance * mean_edge_length(M);
+  const double move_limit = o.tolerance * s.mean_edge_length(M.V);
   SparseMatrixR K = s.pattern.shape_matrix();  // values overwritten every iteration
   const std::vector<double> A_values(K.valuePtr(), K.valuePtr() + K.nonZeros());
   std::vector<double> B_values;
@@ -146,10 +205,12 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     assemble_distance_system(s.pattern, s.F, v_hat, alpha, W, w_hat, beta, B_values, c);
     double b_norm2 = 0.0;
     for (double b : B_values) b_norm2 += b * b;
-    const double mu = o.mu ? *o.mu : std::sqrt(b_norm2) / (3.0 * s.pattern.shape_norm() + std::sqrt(b_norm2));
+    const double mu =
+        o.mu ? *o.mu : std::sqrt(b_norm2) / (3.0 * s.pattern.shape_norm() + std::sqrt(b_norm2));
     it.mu = mu;
     double* kv = K.valuePtr();
-    for (size_t p = 0; p < B_values.size(); ++p) kv[p] = mu * A_values[p] + (1.0 - mu) * B_values[p];
+    for (size_t p = 0; p < B_values.size(); ++p)
+      kv[p] = mu * A_values[p] + (1.0 - mu) * B_values[p];
     rhs = (1.0 - mu) * c;
     if (s.num_pinned > 0) {
       const int* outer = K.outerIndexPtr();
@@ -195,9 +256,10 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     M.V = X;
 
     t0 = Clock::now();
-    bvh_m.refit(M.V);
+    bvh_m_current = false;
+    planes_m.update(M.V, s.F);
     it.exact_queries = update_correspondences(on_n, M.V, exact, o.walk_max_steps, v_hat);
-    it.exact_queries += update_correspondences(on_m, W, exact, o.walk_max_steps, w_hat);
+    it.exact_queries += update_correspondences(on_m, W, exact, o.walk_max_steps, w_hat, refit_m);
     it.seconds_closest = seconds_since(t0);
 
     for (int i = 0; i < n; ++i) d_alpha[i] = std::sqrt(v_hat[i].dist2);

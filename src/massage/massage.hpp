@@ -105,6 +105,9 @@ class Massager {
   const ShapeWeights& weights() const;
   const Triangles& triangles() const;
   int num_vertices() const;
+  /// The BVH of the template's triangles: run() refits a copy of it to M instead of building one,
+  /// and a Reference with the same connectivity may do the same (Reference's `tree`).
+  const TriangleBvh& template_bvh() const;
 
  private:
   struct Impl;
