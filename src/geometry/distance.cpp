@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/triangle_grid.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -59,10 +60,19 @@ std::vector<uint8_t> ownership(const TriMesh& A, bool edges) {
   return owns;
 }
 
+// The grid's cell: the mean edge length of B's triangles (each triangle's three edges).
+double cell_size(const Positions& V, const Triangles& F) {
+  double sum = 0.0;
+  for (int t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) sum += (V.row(F(t, k)) - V.row(F(t, (k + 1) % 3))).norm();
+  const double mean = sum / (3.0 * static_cast<double>(F.rows()));
+  return mean > 0.0 && std::isfinite(mean) ? mean : 1.0;
+}
+
 }  // namespace
 
 DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
-                                 const DistanceOptions& options) {
+                                 const DistanceOptions& options, const TrianglePlanes* planes_b) {
   validate_mesh(A, "one_sided_distance (A)");
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
     std::ostringstream msg;
@@ -73,6 +83,14 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   const int m = A.num_triangles();
   if (m == 0) return stats;
   if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");
+  const Positions& VB = B.positions();
+  const Triangles& FB = B.triangles();
+  TrianglePlanes own_planes;
+  if (!planes_b || planes_b->size() != FB.rows()) {
+    own_planes.update(VB, FB);
+    planes_b = &own_planes;
+  }
+  const TriangleGrid grid(VB, FB, *planes_b, cell_size(VB, FB));
 
   const double h = options.spacing * mean_edge_length(A);
   const std::vector<uint8_t> owns = ownership(A, options.sample_edges);
@@ -82,25 +100,24 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
     for (int t = r.begin(); t != r.end(); ++t) {
       Partial& acc = partial[t];
       const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
-      // Consecutive samples are close: d(q, B) ≤ d(q_prev, B) + |q − q_prev| bounds the search.
-      // The bound is widened a little for rounding; if it still misses, search without bound.
-      Vec3 prev = Vec3::Zero();
-      double prev_d = -1.0;
+      // Consecutive samples are close: the previous one's triangle is tried first.
+      int hint = -1;
       auto sample = [&](const Vec3& q) {
-        double bound2 = std::numeric_limits<double>::infinity();
-        if (prev_d >= 0.0) {
-          const double bound = (prev_d + (q - prev).norm()) * (1.0 + 1e-6);
-          bound2 = bound * bound;
+        double best2 = std::numeric_limits<double>::infinity();
+        int best = -1;
+        if (!grid.closest(q, best2, best, hint)) {
+          const SurfacePoint sp = B.closest(q, best2);
+          if (sp.triangle >= 0) {
+            best2 = sp.dist2;
+            best = sp.triangle;
+          }
         }
-        SurfacePoint sp = B.closest(q, bound2);
-        if (sp.triangle < 0) sp = B.closest(q);
-        const double d = std::sqrt(sp.dist2);
+        hint = best;
+        const double d = std::sqrt(best2);
         acc.max = std::max(acc.max, d);
         acc.sum += d;
-        acc.sum2 += sp.dist2;
+        acc.sum2 += best2;
         ++acc.count;
-        prev = q;
-        prev_d = d;
       };
       for (int k = 0; k < 3; ++k)
         if (owns[t] & (1u << k)) sample(p[k]);
@@ -142,7 +159,6 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   stats.mean = sum / static_cast<double>(stats.samples);
   stats.rms = std::sqrt(sum2 / static_cast<double>(stats.samples));
 
-  const Positions& VB = B.positions();
   Eigen::RowVector3d lo = A.V.colwise().minCoeff(), hi = A.V.colwise().maxCoeff();
   if (VB.rows() > 0) {
     lo = lo.cwiseMin(VB.colwise().minCoeff());
