@@ -145,7 +145,7 @@ void process_frame(const SequencePlan& plan, Work& w) {
   } else {
     const std::string name = frame_label(plan, w.index);
     const Reference reference(file.mesh, c.massage.samples, name.c_str(),
-                              plan.massager->shared_topology());
+                              plan.massager->shared_topology(), &plan.massager->template_bvh());
     const MassageResult result = plan.massager->run(file.mesh.V, reference);
     s.iterations = static_cast<int>(result.iterations.size());
     if (!result.ok) {
@@ -158,8 +158,10 @@ void process_frame(const SequencePlan& plan, Work& w) {
       V = result.V;
       w.obj = format_obj(file, V);
       const TriMesh output{V, F};
-      s.out_to_in = one_sided_distance(output, reference.bvh());
-      s.in_to_out = one_sided_distance(file.mesh, TriangleBvh(output));
+      s.out_to_in = one_sided_distance(output, reference.bvh(), {}, &reference.planes());
+      TriangleBvh output_bvh = reference.bvh();  // same triangles: refit, no rebuild
+      output_bvh.refit(V);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh);
     }
   }
   const Eigen::VectorXd after = w.unchanged ? before : shear_distortion(plan.templ.V, V, F);
