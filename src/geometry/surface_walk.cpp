@@ -1,6 +1,9 @@
 #include "geometry/surface_walk.hpp"
 
+#include <array>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 #include "geometry/closest_point.hpp"
 #include "mesh/errors.hpp"
@@ -43,34 +46,26 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
         << (planes ? planes->size() : -1) << ")";
     throw InputError(msg.str());
   }
-  auto test = [&](int t) {
-    if (planes) return planes->closest(t, p, V, F);
-    return closest_point_on_triangle(p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(),
-                                     V.row(F(t, 2)).transpose());
-  };
-  auto settle = [&](int t, const TrianglePoint& tp) {
-    out.triangle = t;
-    out.bary = tp.bary;
-    out.point = tp.point;
-    out.dist2 = tp.dist2;
+  // Whether triangle t is strictly closer than `best`; if so `best` becomes its closest point.
+  auto closer = [&](int t, TrianglePoint& best) {
+    if (planes) return planes->closer_than(t, p, best.dist2, V, F, best);
+    const TrianglePoint tp = closest_point_on_triangle(
+        p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(), V.row(F(t, 2)).transpose());
+    if (!(tp.dist2 < best.dist2)) return false;
+    best = tp;
+    return true;
   };
 
   int current = start;
-  TrianglePoint here = test(current);
+  TrianglePoint here{Vec3::Zero(), Vec3::Zero(), TriangleRegion::Face,
+                     std::numeric_limits<double>::infinity()};
+  closer(current, here);
+  TrianglePoint best;
   for (int steps = 0;; ++steps) {
     int next = -1;
-    TrianglePoint best = here;
-    TrianglePoint tp;
+    best.dist2 = here.dist2;
     auto consider = [&](int t) {
-      if (t == current) return;
-      if (planes) {
-        if (!planes->closer_than(t, p, best.dist2, V, F, tp)) return;
-      } else {
-        tp = test(t);
-        if (!(tp.dist2 < best.dist2)) return;
-      }
-      best = tp;
-      next = t;
+      if (t != current && closer(t, best)) next = t;
     };
     auto consider_fan = [&](int v) {
       const Csr& fan = topo.vertex_triangles;
@@ -81,8 +76,9 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
     if (k < 0) {
       // Inside the face: a point just inside a convex edge also projects into the face across
       // it, which may be closer. Trying the three edge neighbours catches that case.
+      const std::array<int, 3>& across = topo.triangle_neighbours[current];
       for (int e = 0; e < 3; ++e)
-        if (const int across = topo.triangle_neighbours[current][e]; across >= 0) consider(across);
+        if (across[e] >= 0 && closer(across[e], best)) next = across[e];
     } else {
       if (!is_edge(here.region)) {
         consider_fan(F(current, k));
@@ -94,16 +90,17 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
       }
     }
 
-    if (next < 0) {
-      settle(current, here);
-      return true;
-    }
-    if (steps >= max_steps) {
-      settle(next, best);  // the closest point seen: an upper bound for the exact query
-      return false;
+    const TrianglePoint& end = next < 0 ? here : best;
+    if (next < 0 || steps >= max_steps) {
+      // Settled; or out of steps, and the closest point seen bounds the exact query.
+      out.triangle = next < 0 ? current : next;
+      out.bary = end.bary;
+      out.point = end.point;
+      out.dist2 = end.dist2;
+      return next < 0;
     }
     current = next;
-    here = best;
+    std::swap(here, best);
   }
 }
 

@@ -26,24 +26,25 @@ void TrianglePlanes::update(const Positions& V, const Triangles& F) {
       const Vec3 ac = V.row(F(t, 2)).transpose() - a;
       const Vec3 n = ab.cross(ac);
       const double n2 = n.squaredNorm();
-      const double l2 = std::max({ab.squaredNorm(), ac.squaredNorm(), (ac - ab).squaredNorm()});
+      const double ab2 = ab.squaredNorm(), ac2 = ac.squaredNorm(), bc2 = (ac - ab).squaredNorm();
+      const double l2 = std::max({ab2, ac2, bc2});
       TrianglePlane& f = planes_[t];
       f.origin = a;
       if (!(n2 > kDegenerateRatio2 * l2 * l2)) {
         const double nan = std::numeric_limits<double>::quiet_NaN();
         f.dual1 = f.dual2 = Vec3::Constant(nan);
         f.normal = Vec3::Zero();
-        f.altitude[0] = f.altitude[1] = f.altitude[2] = 0.0;
+        f.altitude2[0] = f.altitude2[1] = f.altitude2[2] = 0.0;
         continue;
       }
       const double inv_n2 = 1.0 / n2;
-      const double len = std::sqrt(n2);
       f.dual1 = ac.cross(n) * inv_n2;
       f.dual2 = n.cross(ab) * inv_n2;
-      f.normal = n / len;
-      f.altitude[0] = len / (ac - ab).norm();
-      f.altitude[1] = len / ac.norm();
-      f.altitude[2] = len / ab.norm();
+      f.normal = n * (1.0 / std::sqrt(n2));
+      // altitude over an edge = |n| / edge length
+      f.altitude2[0] = n2 / bc2;
+      f.altitude2[1] = n2 / ac2;
+      f.altitude2[2] = n2 / ab2;
     }
   });
 }

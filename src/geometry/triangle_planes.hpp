@@ -19,7 +19,7 @@
 namespace sm {
 
 /// The frame of one triangle: corner 0, the two dual vectors giving β and γ, the unit normal and
-/// the altitudes over the edges opposite each corner. A degenerate triangle
+/// the squared altitudes over the edges opposite each corner. A degenerate triangle
 /// (closest_point_on_triangle's criterion) has NaN dual vectors, so that no point is ever inside
 /// it, and a zero normal and altitudes, so that its lower bound is 0.
 struct TrianglePlane {
@@ -27,7 +27,7 @@ struct TrianglePlane {
   Vec3 dual1;
   Vec3 dual2;
   Vec3 normal;
-  double altitude[3];
+  double altitude2[3];
 };
 
 class TrianglePlanes {
@@ -68,8 +68,8 @@ class TrianglePlanes {
   }
 
   /// Whether triangle t is strictly closer to p than sqrt(bound2); if so, its closest point goes
-  /// to `out`. Decided by the face case or, outside the face, by the lower bound h² + s² where it
-  /// suffices, by closest_point_on_triangle otherwise.
+  /// to `out` (which is left alone otherwise). Decided by the face case or, outside the face, by
+  /// the lower bound h² + s² where it suffices, by closest_point_on_triangle otherwise.
   bool closer_than(int t, const Vec3& p, double bound2, const Positions& V, const Triangles& F,
                    TrianglePoint& out) const {
     const TrianglePlane& f = planes_[t];
@@ -84,14 +84,16 @@ class TrianglePlanes {
       out.dist2 = h * h;
       return true;
     }
-    double s = 0.0;  // NaN coordinates (a degenerate triangle) leave the bound at 0
-    if (alpha < 0.0) s = std::max(s, -alpha * f.altitude[0]);
-    if (beta < 0.0) s = std::max(s, -beta * f.altitude[1]);
-    if (gamma < 0.0) s = std::max(s, -gamma * f.altitude[2]);
-    if (!(h * h + s * s < bound2)) return false;
-    out = closest_point_on_triangle(p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(),
-                                    V.row(F(t, 2)).transpose());
-    return out.dist2 < bound2;
+    double s2 = 0.0;  // NaN coordinates (a degenerate triangle) leave the bound at 0
+    if (alpha < 0.0) s2 = std::max(s2, alpha * alpha * f.altitude2[0]);
+    if (beta < 0.0) s2 = std::max(s2, beta * beta * f.altitude2[1]);
+    if (gamma < 0.0) s2 = std::max(s2, gamma * gamma * f.altitude2[2]);
+    if (!(h * h + s2 < bound2)) return false;
+    const TrianglePoint full = closest_point_on_triangle(
+        p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(), V.row(F(t, 2)).transpose());
+    if (!(full.dist2 < bound2)) return false;
+    out = full;
+    return true;
   }
 
  private:

@@ -223,7 +223,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     }
     SolveStats solve;
     bool use_direct = o.solver == SolverKind::Direct;
-    if (!use_direct && !ilu.factor(K, s.pattern.diagonal_slots())) use_direct = true;
+    if (!use_direct && !ilu.factor(K, s.pattern.ilu_schedule())) use_direct = true;
     it.seconds_assemble = seconds_since(t0);
 
     t0 = Clock::now();
