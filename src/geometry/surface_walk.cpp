@@ -76,9 +76,12 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
     if (k < 0) {
       // Inside the face: a point just inside a convex edge also projects into the face across
       // it, which may be closer. Trying the three edge neighbours catches that case.
-      const std::array<int, 3>& across = topo.triangle_neighbours[current];
-      for (int e = 0; e < 3; ++e)
-        if (across[e] >= 0 && closer(across[e], best)) next = across[e];
+      // The bends of the projection frames can tell that none of them is closer.
+      if (!planes || !planes->face_settles(current, p, here.bary)) {
+        const std::array<int, 3>& across = topo.triangle_neighbours[current];
+        for (int e = 0; e < 3; ++e)
+          if (across[e] >= 0 && closer(across[e], best)) next = across[e];
+      }
     } else {
       if (!is_edge(here.region)) {
         consider_fan(F(current, k));

@@ -171,6 +171,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     if (!bvh_m_current) bvh_m.refit(M.V);
     bvh_m_current = true;
   };
+  // (Without bends: recomputing them every iteration costs more than they save on M.)
   TrianglePlanes planes_m(M.V, s.F);
   const TriMesh& N = reference.mesh();
   const Positions& W = reference.samples();

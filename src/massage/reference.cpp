@@ -49,7 +49,7 @@ Reference::Reference(TriMesh mesh, SampleKind samples, const char* name,
   } else {
     bvh_ = TriangleBvh(mesh_);
   }
-  planes_.update(mesh_.V, mesh_.F);
+  planes_.update(mesh_.V, mesh_.F, topology_.get());
   samples_ = surface_samples(mesh_, *topology_, samples);
   diagonal_ = sm::bounding_box_diagonal(mesh_.V);
 }

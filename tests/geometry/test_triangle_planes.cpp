@@ -139,3 +139,47 @@ TEST_CASE("a walk that runs out of steps returns the best point seen", "[planes]
   CHECK(out.dist2 == Approx((p - out.point).squaredNorm()).margin(1e-12));
   CHECK(out.dist2 < ericson(mesh, 0, p).dist2);
 }
+
+TEST_CASE("a face that settles has no closer edge neighbour", "[planes]") {
+  // Convex and concave edges (box, bumpy sphere seen from outside and inside, a folded grid),
+  // points inside faces at heights from far below to far above the surface.
+  TriMesh bumpy = make_icosphere(3, 1.0);
+  for (int v = 0; v < bumpy.num_vertices(); ++v) {
+    const Vec3 p = bumpy.vertex(v);
+    bumpy.V.row(v) *= 1.0 + 0.2 * std::sin(6.0 * p.x()) * std::cos(4.0 * p.z());
+  }
+  TriMesh folded = make_grid(12, 12, 1.0, 1.0);
+  for (int v = 0; v < folded.num_vertices(); ++v)
+    folded.V(v, 2) = 0.6 * std::abs(folded.V(v, 0) - 0.5) - 0.4 * std::abs(folded.V(v, 1) - 0.5);
+  for (const TriMesh& mesh : {make_box(4, 1.0, 2.0, 0.5), bumpy, folded}) {
+    const Topology topo = build_topology(mesh);
+    const TrianglePlanes planes(mesh.V, mesh.F, &topo);
+    const TrianglePlanes unknown(mesh.V, mesh.F);
+    const double h = mean_edge_length(mesh);
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<double> u01(0.0, 1.0), height(-1.0, 1.0);
+    int settled = 0, count = 0;
+    for (int t = 0; t < mesh.num_triangles(); ++t)
+      for (int i = 0; i < 40; ++i) {
+        double a = u01(rng), b = u01(rng);
+        if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+        const Vec3 bary(1.0 - a - b, a, b);
+        const Vec3 foot = bary[0] * mesh.vertex(mesh.F(t, 0)) +
+                          bary[1] * mesh.vertex(mesh.F(t, 1)) + bary[2] * mesh.vertex(mesh.F(t, 2));
+        const Vec3 p = foot + std::pow(height(rng), 3) * 2.0 * h * planes[t].normal;
+        TrianglePoint face;
+        if (!planes.closest_in_face(t, p, face)) continue;
+        ++count;
+        CHECK_FALSE(unknown.face_settles(t, p, face.bary));
+        if (!planes.face_settles(t, p, face.bary)) continue;
+        ++settled;
+        for (int k = 0; k < 3; ++k) {
+          const int across = topo.triangle_neighbours[t][k];
+          if (across < 0) continue;
+          INFO("triangle " << t << " edge " << k << " height " << (p - foot).norm() / h);
+          CHECK(ericson(mesh, across, p).dist2 >= face.dist2 * (1.0 - 1e-12) - 1e-24);
+        }
+      }
+    CHECK(settled > count / 2);
+  }
+}
