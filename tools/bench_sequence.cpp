@@ -134,11 +134,14 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const DistortionSummary sb = summarize_distortion(before), sa = summarize_distortion(after);
     const double t_shear = seconds_since(t0);
     const TriMesh output{result.V, templ.F};
+    const Topology& topology = massager.topology();
+    const DistanceStats out_to_in =
+        one_sided_distance(output, reference.bvh(), {}, &reference.planes(), &topology);
     TriangleBvh output_bvh = reference.bvh();
     output_bvh.refit(result.V);
-    const DistanceStats out_to_in = one_sided_distance(output, reference.bvh(), {},
-                                                       &reference.planes());
-    const DistanceStats in_to_out = one_sided_distance(file.mesh, output_bvh);
+    const TrianglePlanes output_planes(result.V, templ.F, &topology);
+    const DistanceStats in_to_out =
+        one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
     measure += seconds_since(t0);
     shear += t_shear;
     distance += seconds_since(t0) - t_shear;
@@ -147,15 +150,15 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const std::string obj = format_obj(file, result.V);
     const std::string csv = format_distortion_csv(before, after);
     write_file_atomic(scratch / "frames" / frames[k].filename(), obj);
-    write_file_atomic(scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"),
-                      csv);
+    write_file_atomic(
+        scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"), csv);
     write += seconds_since(t0);
     ++count;
-    std::printf("  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
-                "in->out max %.3e rms %.3e | %d its\n",
-                frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean,
-                out_to_in.max, out_to_in.rms, in_to_out.max, in_to_out.rms,
-                static_cast<int>(result.iterations.size()));
+    std::printf(
+        "  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
+        "in->out max %.3e rms %.3e | %d its\n",
+        frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, out_to_in.max,
+        out_to_in.rms, in_to_out.max, in_to_out.rms, static_cast<int>(result.iterations.size()));
   }
   const double total = read + optimize + measure + write;
   std::printf(
@@ -167,9 +170,9 @@ void stages(const fs::path& crane, const fs::path& scratch) {
       "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
       count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
       1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
-      double(iterations) / count, 1e3 * measure / count, 100 * measure / total,
-      1e3 * shear / count, 1e3 * distance / count, 1e3 * write / count, 100 * write / total,
-      1e3 * total / count, count / total);
+      double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
+      1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * total / count,
+      count / total);
 }
 
 }  // namespace
@@ -188,13 +191,20 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--data") data = next();
-    else if (a == "--repeat") repeat = std::max(1, std::stoi(next()));
-    else if (a == "--short") short_frames = std::stoi(next());
-    else if (a == "--long") long_frames = std::stoi(next());
-    else if (a == "--no-memory") memory = false;
-    else if (a == "--no-stages") stage_timings = false;
-    else if (a == "--keep") keep = next();
+    if (a == "--data")
+      data = next();
+    else if (a == "--repeat")
+      repeat = std::max(1, std::stoi(next()));
+    else if (a == "--short")
+      short_frames = std::stoi(next());
+    else if (a == "--long")
+      long_frames = std::stoi(next());
+    else if (a == "--no-memory")
+      memory = false;
+    else if (a == "--no-stages")
+      stage_timings = false;
+    else if (a == "--keep")
+      keep = next();
     else {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
@@ -218,12 +228,13 @@ int main(int argc, char** argv) {
     if (stage_timings) stages(crane, scratch / "stages");
     const fs::path config = scratch / "crane.json";
     write_text(config, "{ \"job\": \"sequence\", \"input\": { \"frames\": " +
-                           json_path(fs::absolute(crane)) + " },\n  \"output\": { \"dir\": " +
-                           json_path(scratch / "crane") +
+                           json_path(fs::absolute(crane)) +
+                           " },\n  \"output\": { \"dir\": " + json_path(scratch / "crane") +
                            ", \"per_triangle_csv\": true },\n  \"template\": { \"frame\": 0 } }\n");
-    std::printf("whole job, `seqmassage crane.json --quiet --threads N` (%d frames, I/O included, "
-                "best of %d):\n",
-                frames, repeat);
+    std::printf(
+        "whole job, `seqmassage crane.json --quiet --threads N` (%d frames, I/O included, "
+        "best of %d):\n",
+        frames, repeat);
     for (int threads : {1, 2}) {
       const ChildRun r = best_of(config, threads, scratch / "crane.log", repeat);
       if (!r.ok) {

@@ -34,30 +34,50 @@ long divisions(double length, double h, long cap) {
 
 // Which corners (bits 0–2) and edges k → k+1 (bits 3–5) each triangle samples: every vertex and
 // every undirected edge belongs to the first triangle (lowest index, then lowest corner) using it.
-std::vector<uint8_t> ownership(const TriMesh& A, bool edges) {
+// Also the mean edge length, each undirected edge once, summed in the order of (lower vertex,
+// higher vertex) as mean_edge_length does (so the value is the same, bit for bit). Linear: the
+// half-edges are bucketed by their lower vertex, and each (small) bucket sorted.
+struct Sampling {
+  std::vector<uint8_t> owns;
+  double mean_edge = 0.0;
+};
+
+Sampling sampling(const TriMesh& A, bool edges) {
   const int n = A.num_vertices(), m = A.num_triangles();
-  std::vector<uint8_t> owns(m, 0);
+  Sampling out;
+  out.owns.assign(m, 0);
   std::vector<uint8_t> seen(n, 0);
   for (int t = 0; t < m; ++t)
     for (int k = 0; k < 3; ++k)
       if (!seen[A.F(t, k)]) {
         seen[A.F(t, k)] = 1;
-        owns[t] |= uint8_t(1u << k);
+        out.owns[t] |= uint8_t(1u << k);
       }
-  if (!edges) return owns;
-  std::vector<std::pair<uint64_t, int>> keys;
-  keys.reserve(static_cast<size_t>(m) * 3);
+  std::vector<int> start(n + 1, 0);
+  for (int t = 0; t < m; ++t)
+    for (int k = 0; k < 3; ++k) ++start[std::min(A.F(t, k), A.F(t, (k + 1) % 3)) + 1];
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::pair<int, int>> entries(3 * static_cast<size_t>(m));  // (higher vertex, 3t+k)
+  std::vector<int> cursor(start.begin(), start.end() - 1);
   for (int t = 0; t < m; ++t)
     for (int k = 0; k < 3; ++k) {
-      uint32_t a = static_cast<uint32_t>(A.F(t, k)), b = static_cast<uint32_t>(A.F(t, (k + 1) % 3));
-      if (a > b) std::swap(a, b);
-      keys.emplace_back((uint64_t(a) << 32) | b, 3 * t + k);
+      const int a = A.F(t, k), b = A.F(t, (k + 1) % 3);
+      entries[cursor[std::min(a, b)]++] = {std::max(a, b), 3 * t + k};
     }
-  std::sort(keys.begin(), keys.end());
-  for (size_t i = 0; i < keys.size(); ++i)
-    if (i == 0 || keys[i].first != keys[i - 1].first)
-      owns[keys[i].second / 3] |= uint8_t(8u << (keys[i].second % 3));
-  return owns;
+  double sum = 0.0;
+  long count = 0;
+  for (int a = 0; a < n; ++a) {
+    const auto first = entries.begin() + start[a], last = entries.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto e = first; e != last; ++e) {
+      if (e != first && (e - 1)->first == e->first) continue;
+      if (edges) out.owns[e->second / 3] |= uint8_t(8u << (e->second % 3));
+      sum += (A.V.row(a) - A.V.row(e->first)).norm();
+      ++count;
+    }
+  }
+  out.mean_edge = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return out;
 }
 
 // The grid's cell: the mean edge length of B's triangles (each triangle's three edges).
@@ -72,7 +92,8 @@ double cell_size(const Positions& V, const Triangles& F) {
 }  // namespace
 
 DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
-                                 const DistanceOptions& options, const TrianglePlanes* planes_b) {
+                                 const DistanceOptions& options, const TrianglePlanes* planes_b,
+                                 const Topology* topology_b) {
   validate_mesh(A, "one_sided_distance (A)");
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
     std::ostringstream msg;
@@ -87,13 +108,14 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   const Triangles& FB = B.triangles();
   TrianglePlanes own_planes;
   if (!planes_b || planes_b->size() != FB.rows()) {
-    own_planes.update(VB, FB);
+    own_planes.update(VB, FB, topology_b);
     planes_b = &own_planes;
   }
-  const TriangleGrid grid(VB, FB, *planes_b, cell_size(VB, FB));
+  const TriangleGrid grid(VB, FB, *planes_b, cell_size(VB, FB), topology_b);
 
-  const double h = options.spacing * mean_edge_length(A);
-  const std::vector<uint8_t> owns = ownership(A, options.sample_edges);
+  const Sampling layout = sampling(A, options.sample_edges);
+  const std::vector<uint8_t>& owns = layout.owns;
+  const double h = options.spacing * layout.mean_edge;
   std::vector<Partial> partial(m);
 
   tbb::parallel_for(tbb::blocked_range<int>(0, m, 256), [&](const tbb::blocked_range<int>& r) {

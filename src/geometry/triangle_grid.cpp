@@ -23,8 +23,11 @@ float round_up(double x) {
 }  // namespace
 
 TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes,
-                           double cell)
-    : V_(&V), F_(&F), planes_(&planes) {
+                           double cell, const Topology* topo)
+    : V_(&V),
+      F_(&F),
+      planes_(&planes),
+      topo_(topo && topo->num_triangles == F.rows() ? topo : nullptr) {
   const int m = static_cast<int>(F.rows());
   if (planes.size() != m || !(cell > 0.0) || !std::isfinite(cell)) {
     std::ostringstream msg;
@@ -103,7 +106,8 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
   margin_ = 1e-6 * (scale + cell_);
 }
 
-void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triangle) const {
+void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triangle,
+                        const int* skip) const {
   const float px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
               pz = static_cast<float>(p.z());
   // A box farther than the best distance (plus the float test's error) cannot hold a closer point.
@@ -132,7 +136,7 @@ void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triang
     for (int i = 0; i < count; ++i) {
       if (!(d2[i] < limit)) continue;
       const int t = triangle_[begin + i];
-      if (t == best_triangle) continue;
+      if (t == best_triangle || t == skip[0] || t == skip[1] || t == skip[2]) continue;
       if (planes_->closer_than(t, p, best2, *V_, *F_, tp)) {
         best2 = tp.dist2;
         best_triangle = t;
@@ -145,9 +149,12 @@ void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triang
 bool TriangleGrid::closest(const Vec3& p, double& best2, int& best_triangle, int hint) const {
   if (cells_.empty()) return false;
   TrianglePoint tp;
+  int skip[3] = {-1, -1, -1};  // edge neighbours of a hint that settles in its face
   if (hint >= 0 && hint != best_triangle && planes_->closer_than(hint, p, best2, *V_, *F_, tp)) {
     best2 = tp.dist2;
     best_triangle = hint;
+    if (topo_ && tp.region == TriangleRegion::Face && planes_->face_settles(hint, p, tp.bary))
+      for (int k = 0; k < 3; ++k) skip[k] = topo_->triangle_neighbours[hint][k];
   }
   for (int t : big_)
     if (t != best_triangle && planes_->closer_than(t, p, best2, *V_, *F_, tp)) {
@@ -155,12 +162,18 @@ bool TriangleGrid::closest(const Vec3& p, double& best2, int& best_triangle, int
       best_triangle = t;
     }
   int c[3];
+  double g[3];
   for (int a = 0; a < 3; ++a) {
-    const double g = (p[a] - origin_[a]) * inv_cell_;
-    if (!(g >= 0.0 && g < dims_[a])) return false;  // outside the grid (or NaN)
-    c[a] = static_cast<int>(g);
+    g[a] = (p[a] - origin_[a]) * inv_cell_;
+    if (!(g[a] >= 0.0 && g[a] < dims_[a])) return false;  // outside the grid (or NaN)
+    c[a] = static_cast<int>(g[a]);
   }
-  scan(cell_index(c[0], c[1], c[2]), p, best2, best_triangle);
+  scan(cell_index(c[0], c[1], c[2]), p, best2, best_triangle, skip);
+  // The ball through the best point within p's cell: nothing else to test.
+  double wall = 1.0;
+  for (int a = 0; a < 3; ++a) wall = std::min({wall, g[a] - c[a], c[a] + 1.0 - g[a]});
+  const double in_cell = (wall - 1e-9) * cell_;
+  if (in_cell > 0.0 && best2 < in_cell * in_cell) return true;
   // Every triangle with a point strictly inside the ball of radius sqrt(best2) around p is
   // listed in a cell the ball overlaps: test those cells too, if they are p's neighbours. When
   // the ball still reaches beyond them, testing all the neighbours may shrink it enough.
@@ -186,7 +199,8 @@ bool TriangleGrid::closest(const Vec3& p, double& best2, int& best_triangle, int
   for (int z = lo[2]; z <= hi[2]; ++z)
     for (int y = lo[1]; y <= hi[1]; ++y)
       for (int x = lo[0]; x <= hi[0]; ++x)
-        if (x != c[0] || y != c[1] || z != c[2]) scan(cell_index(x, y, z), p, best2, best_triangle);
+        if (x != c[0] || y != c[1] || z != c[2])
+          scan(cell_index(x, y, z), p, best2, best_triangle, skip);
   return inside || ball_cells();
 }
 

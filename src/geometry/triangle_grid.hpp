@@ -17,8 +17,11 @@ class TriangleGrid {
   /// stay) those of (V, F); V, F and planes must outlive the grid. Cells are cubes of side about
   /// `cell` (> 0), enlarged if the mesh's box would need more than 8 cells per triangle. A
   /// triangle is listed in every cell its bounding box overlaps; one spanning more than 64 cells
-  /// is tested by every query instead.
-  TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes, double cell);
+  /// is tested by every query instead. With `topo` (F's connectivity; it must outlive the grid),
+  /// a hint that settles in its face (TrianglePlanes::face_settles) spares the tests of its edge
+  /// neighbours.
+  TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes, double cell,
+               const Topology* topo = nullptr);
 
   /// Lowers best2 to the squared distance of the closest triangle of the mesh to p, and sets
   /// best_triangle to it, when one is strictly closer than sqrt(best2); `hint`, if >= 0, is
@@ -33,11 +36,12 @@ class TriangleGrid {
 
  private:
   int cell_index(int x, int y, int z) const { return (z * dims_[1] + y) * dims_[0] + x; }
-  void scan(int cell, const Vec3& p, double& best2, int& best_triangle) const;
+  void scan(int cell, const Vec3& p, double& best2, int& best_triangle, const int* skip) const;
 
   const Positions* V_ = nullptr;
   const Triangles* F_ = nullptr;
   const TrianglePlanes* planes_ = nullptr;
+  const Topology* topo_ = nullptr;
   Vec3 origin_ = Vec3::Zero();
   double cell_ = 1.0, inv_cell_ = 1.0;
   int dims_[3] = {0, 0, 0};

@@ -158,10 +158,13 @@ void process_frame(const SequencePlan& plan, Work& w) {
       V = result.V;
       w.obj = format_obj(file, V);
       const TriMesh output{V, F};
-      s.out_to_in = one_sided_distance(output, reference.bvh(), {}, &reference.planes());
+      const Topology& topology = plan.massager->topology();
+      s.out_to_in =
+          one_sided_distance(output, reference.bvh(), {}, &reference.planes(), &topology);
       TriangleBvh output_bvh = reference.bvh();  // same triangles: refit, no rebuild
       output_bvh.refit(V);
-      s.in_to_out = one_sided_distance(file.mesh, output_bvh);
+      const TrianglePlanes output_planes(V, F, &topology);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
     }
   }
   const Eigen::VectorXd after = w.unchanged ? before : shear_distortion(plan.templ.V, V, F);

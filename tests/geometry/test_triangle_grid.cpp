@@ -35,10 +35,11 @@ TriMesh bumpy_sphere() {
 TEST_CASE("grid queries are exact whenever they answer", "[grid]") {
   for (const TriMesh& mesh :
        {bumpy_sphere(), make_torus(40, 16, 2.0, 0.5), make_grid(10, 10, 1, 1)}) {
-    const TrianglePlanes planes(mesh.V, mesh.F);
+    const Topology topo = build_topology(mesh);
+    const TrianglePlanes planes(mesh.V, mesh.F, &topo);  // with bends: settled hints skip
     const double h = mean_edge_length(mesh);
     for (double cell : {0.5 * h, h, 3.0 * h}) {
-      const TriangleGrid grid(mesh.V, mesh.F, planes, cell);
+      const TriangleGrid grid(mesh.V, mesh.F, planes, cell, cell == h ? &topo : nullptr);
       std::mt19937 rng(17);
       std::uniform_int_distribution<int> vertex(0, mesh.num_vertices() - 1);
       std::uniform_real_distribution<double> u(-1.0, 1.0);
