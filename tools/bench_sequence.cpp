@@ -13,7 +13,9 @@
 //     each; it must not grow with the number of frames.
 //
 //   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
-//                  [--keep DIR]
+//                  [--keep DIR] [--seqmassage PATH]
+//
+// --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -54,6 +56,8 @@ struct ChildRun {
 
 // Runs `seqmassage config --quiet [--threads N]` and measures it from here: wall time and the
 // child's peak resident set.
+const char* g_seqmassage = SEQMASSAGE_BIN;
+
 ChildRun run_job(const fs::path& config, int threads, const fs::path& log) {
   ChildRun run;
   const std::string threads_arg = std::to_string(threads);
@@ -66,8 +70,8 @@ ChildRun run_job(const fs::path& config, int threads, const fs::path& log) {
       ::dup2(::fileno(out), 1);
       ::dup2(::fileno(out), 2);
     }
-    ::execl(SEQMASSAGE_BIN, SEQMASSAGE_BIN, config.c_str(), "--quiet", "--threads",
-            threads_arg.c_str(), static_cast<char*>(nullptr));
+    ::execl(g_seqmassage, g_seqmassage, config.c_str(), "--quiet", "--threads", threads_arg.c_str(),
+            static_cast<char*>(nullptr));
     std::_Exit(127);
   }
   int status = 0;
@@ -208,7 +212,7 @@ int main(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
-                   " [--no-memory] [--no-stages] [--keep DIR]\n");
+                   " [--no-memory] [--no-stages] [--keep DIR] [--seqmassage PATH]\n");
       return 2;
     }
   }
@@ -216,7 +220,7 @@ int main(int argc, char** argv) {
       keep.empty() ? fs::temp_directory_path() / ("bench_sequence." + std::to_string(::getpid()))
                    : keep;
   fs::create_directories(scratch);
-  std::printf("bench_sequence: seqmassage %s, scratch %s\n", SEQMASSAGE_BIN,
+  std::printf("bench_sequence: seqmassage %s, scratch %s\n", g_seqmassage,
               scratch.string().c_str());
 
   const fs::path crane = data / "sequences" / "vlasic_crane";
