@@ -165,9 +165,10 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
   // Per-run state: M's positions, BVH (the template's tree, refitted only when an exact query on
   // M needs it) and projection frames; correspondences both ways; Lawson weights.
   TriMesh M{start, s.F};
-  TriangleBvh bvh_m = s.bvh;
+  TriangleBvh bvh_m;  // copied from the template's on first use
   bool bvh_m_current = false;
   auto refit_m = [&] {
+    if (bvh_m.empty()) bvh_m = s.bvh;
     if (!bvh_m_current) bvh_m.refit(M.V);
     bvh_m_current = true;
   };
