@@ -50,7 +50,8 @@ double seconds_since(Clock::time_point t0) {
 
 struct ChildRun {
   bool ok = false;
-  double seconds = 0.0;
+  double seconds = 0.0;      ///< wall
+  double cpu_seconds = 0.0;  ///< user + system: the work done, less sensitive to other load
   long max_rss_kb = 0;
 };
 
@@ -79,6 +80,8 @@ ChildRun run_job(const fs::path& config, int threads, const fs::path& log) {
   if (::wait4(pid, &status, 0, &usage) != pid) return run;
   run.seconds = seconds_since(t0);
   run.max_rss_kb = usage.ru_maxrss;
+  run.cpu_seconds = usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec + usage.ru_stime.tv_sec +
+                    1e-6 * usage.ru_stime.tv_usec;
   run.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   return run;
 }
@@ -246,8 +249,8 @@ int main(int argc, char** argv) {
                     (scratch / "crane.log").string().c_str());
         continue;
       }
-      std::printf("  %d thread(s): %7.3f s wall, %6.1f frames/s, max RSS %6.1f MB\n", threads,
-                  r.seconds, frames / r.seconds, r.max_rss_kb / 1024.0);
+      std::printf("  %d thread(s): %7.3f s wall (%6.3f s CPU), %6.1f frames/s, max RSS %6.1f MB\n",
+                  threads, r.seconds, r.cpu_seconds, frames / r.seconds, r.max_rss_kb / 1024.0);
     }
   }
 
@@ -265,8 +268,8 @@ int main(int argc, char** argv) {
                     (scratch / "tube.log").string().c_str());
         continue;
       }
-      std::printf("  %5d frames: max RSS %6.1f MB, %7.2f s wall, %6.1f frames/s\n", frames,
-                  r.max_rss_kb / 1024.0, r.seconds, frames / r.seconds);
+      std::printf("  %5d frames: max RSS %6.1f MB, %7.2f s wall (%7.2f s CPU), %6.1f frames/s\n",
+                  frames, r.max_rss_kb / 1024.0, r.seconds, r.cpu_seconds, frames / r.seconds);
     }
   }
   if (keep.empty()) fs::remove_all(scratch);
