@@ -212,7 +212,11 @@ int main(int argc, char** argv) {
       stage_timings = false;
     else if (a == "--keep")
       keep = next();
-    else {
+    else if (a == "--seqmassage") {
+      static std::string bin;
+      bin = next();
+      g_seqmassage = bin.c_str();
+    } else {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
                    " [--no-memory] [--no-stages] [--keep DIR] [--seqmassage PATH]\n");
