@@ -13,7 +13,7 @@
 //     each; it must not grow with the number of frames.
 //
 //   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
-//                  [--keep DIR] [--seqmassage PATH]
+//                  [--no-job] [--keep DIR] [--seqmassage PATH]
 //
 // --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
 #include <sys/resource.h>
@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
   fs::path keep;
   int repeat = 3, short_frames = 50, long_frames = 1000;
-  bool memory = true, stage_timings = true;
+  bool memory = true, stage_timings = true, job = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -210,6 +210,8 @@ int main(int argc, char** argv) {
       memory = false;
     else if (a == "--no-stages")
       stage_timings = false;
+    else if (a == "--no-job")
+      job = false;
     else if (a == "--keep")
       keep = next();
     else if (a == "--seqmassage") {
@@ -219,7 +221,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
-                   " [--no-memory] [--no-stages] [--keep DIR] [--seqmassage PATH]\n");
+                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]\n");
       return 2;
     }
   }
@@ -237,6 +239,9 @@ int main(int argc, char** argv) {
   } else {
     const int frames = static_cast<int>(list_frames(crane, ".obj").size());
     if (stage_timings) stages(crane, scratch / "stages");
+  }
+  if (job && fs::exists(crane / "frame_0000.obj")) {
+    const int frames = static_cast<int>(list_frames(crane, ".obj").size());
     const fs::path config = scratch / "crane.json";
     write_text(config, "{ \"job\": \"sequence\", \"input\": { \"frames\": " +
                            json_path(fs::absolute(crane)) +
