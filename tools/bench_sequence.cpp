@@ -236,9 +236,8 @@ int main(int argc, char** argv) {
   if (!fs::exists(crane / "frame_0000.obj")) {
     std::printf("crane: skipped, %s not found (the real data lives in ../shared/data)\n",
                 crane.string().c_str());
-  } else {
-    const int frames = static_cast<int>(list_frames(crane, ".obj").size());
-    if (stage_timings) stages(crane, scratch / "stages");
+  } else if (stage_timings) {
+    stages(crane, scratch / "stages");
   }
   if (job && fs::exists(crane / "frame_0000.obj")) {
     const int frames = static_cast<int>(list_frames(crane, ".obj").size());
