@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds seqmassage and runs every test: the Release build, then the test suite again under
-# AddressSanitizer + UndefinedBehaviorSanitizer. This is the README's test command and all that
-# .ci/run does.
+# AddressSanitizer + UndefinedBehaviorSanitizer, then the suites that run TBB in parallel under
+# ThreadSanitizer (tools/tsan.sh). This is the README's test command and all that .ci/run does.
+#   SEQMASSAGE_SKIP_SANITIZERS=1   the Release build only
+#   SEQMASSAGE_SKIP_TSAN=1         no ThreadSanitizer stage
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -18,4 +20,14 @@ if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake --build build-asan -j"$jobs"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-asan --output-on-failure -j"$jobs"
+
+  if [ "${SEQMASSAGE_SKIP_TSAN:-0}" != 1 ]; then
+    status=0
+    bash tools/tsan.sh || status=$?
+    if [ "$status" = 3 ]; then
+      echo "test: ThreadSanitizer stage SKIPPED: oneTBB could not be built with it (see above)"
+    elif [ "$status" != 0 ]; then
+      exit "$status"
+    fi
+  fi
 fi

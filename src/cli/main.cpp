@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -10,10 +11,14 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "io/config.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/measure_files.hpp"
+#include "pipeline/mesh_job.hpp"
+#include "pipeline/mesh_report.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/sequence_job.hpp"
 
@@ -32,11 +37,16 @@ enum ExitCode : int {
 };
 
 constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
+       seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
 
-Corrects texture swimming in a captured mesh sequence (Mesh Massage, paper section 3.1): every
-frame is optimized so that its triangles take the shapes of the template frame's while it stays
-on its own surface. What to do is described by the JSON config file (see README.md); paths in it
-are relative to the file's folder.
+Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
+by its "job" key:
+  sequence    corrects texture swimming in a captured mesh sequence (Mesh Massage, section 3.1):
+              every frame takes the template frame's triangle shapes and stays on its surface
+  remesh      brings a remesh closer to its source surface (section 3.3)
+  crossparam  copies the triangle shapes of a source mesh onto a target mesh with the same
+              connectivity (section 3.2)
+  smooth      evens out the triangles while keeping the surface and its sharp features (section 4)
 
 Options:
   -h, --help            print this help and exit
@@ -50,19 +60,53 @@ Options:
                         nothing
   -q, --quiet           no progress and no summary; errors and failed frames only
 
-Outputs (under "output.dir"): frames/<input name>.obj, distortion/<frame>.csv (with
-"per_triangle_csv"), summary.csv (one row per frame) and report.json.
+Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
+with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
+
+Outputs (under "output.dir"): for a sequence, frames/<input name>.obj (or, with "format": "gltf",
+sequence.glb), distortion/<frame>.csv (with "per_triangle_csv"), summary.csv (one row per frame)
+and report.json; for the other jobs, <input file name> (in "output.format"), measures.csv (before
+and after), report.json and, with "per_triangle_csv", triangles.csv. --frames applies to
+sequences only.
 
 Exit status:
-  0    every frame was processed
+  0    every frame (or the mesh) was processed
   1    internal error (a bug; please report it)
   2    usage or config error: bad option, missing config file, invalid JSON, unknown key,
        wrong type or out-of-range value, an output folder that would overwrite an input
-  3    input error: a malformed frame or template, frames with different vertex counts or faces
+  3    input error: a malformed frame, template or glTF file (the message names the glTF
+       element), frames with different vertex counts or faces
   4    I/O error: a file or folder cannot be read or written
   5    processing error: some frames failed numerically (reason in summary.csv and on stderr);
-       they are written unchanged and the other frames are complete
+       they are written unchanged and the other frames are complete. For a single-mesh job,
+       the optimizer failed: no mesh is written, report.json holds the reason
   130  interrupted (Ctrl-C): the frames done so far are written and listed in summary.csv
+)";
+
+constexpr const char* kMeasureHelp = R"(Usage: seqmassage measure [options] MESH REFERENCE
+
+Prints the paper's measures of MESH against REFERENCE (any two .obj, .off or .ply meshes), the
+same report as the remesh, crossparam and smooth jobs write:
+  - Metro-style one-sided distances MESH -> REFERENCE and REFERENCE -> MESH (max, mean, RMS,
+    absolute and relative to the bounding-box diagonal of both), sampled on vertices, edges and
+    inside triangles, and the symmetric Hausdorff distance;
+  - the radius ratio 2r/R of both meshes' triangles (min, mean; 1 = equilateral);
+  - the shear distortion (eq. 8) of MESH against the --template, or against REFERENCE when it has
+    MESH's connectivity (max, mean, p95, histogram);
+  - REFERENCE's sharp edges: their distance to MESH, and with the same connectivity the change of
+    their dihedral angles.
+
+Options:
+  -h, --help              print this help and exit
+      --template T        shear of MESH against the mesh T (MESH's connectivity)
+      --spacing X         sample spacing, fraction of the mean edge length (default 0.25)
+      --feature-angle D   dihedral angle in degrees above which an edge is sharp (default 30)
+      --csv FILE          also write the row as CSV (the columns of measures.csv)
+      --json FILE         also write the measures as JSON
+      --threads N         worker threads (0 = one per core)
+
+Exit status: 0 success, 2 usage error, 3 input error (malformed mesh, template of another
+connectivity), 4 I/O error.
 )";
 
 struct Args {
@@ -213,8 +257,13 @@ class Progress {
   bool drawn_ = false;
 };
 
+int run_mesh_job(const Args& args, sm::MeshJobConfig config);
+
 int run(const Args& args) {
-  sm::JobConfig config = sm::load_config(args.config);
+  sm::AnyJobConfig any = sm::load_any_config(args.config);
+  if (auto* mesh_job = std::get_if<sm::MeshJobConfig>(&any))
+    return run_mesh_job(args, std::move(*mesh_job));
+  sm::JobConfig config = std::get<sm::JobConfig>(std::move(any));
   if (args.threads) config.threads = *args.threads;
   if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
   const sm::SequencePlan plan = sm::plan_sequence_job(config);
@@ -250,7 +299,8 @@ int run(const Args& args) {
     std::cerr << "seqmassage: " << result.frames.size() << " frames in " << fixed(result.seconds, 1)
               << " s (" << result.failed << " failed), mean shear " << fixed(before / n, 4)
               << " -> " << fixed(after / n, 4) << "\n";
-    std::cout << "results: " << shown(out) << "/ (frames/, "
+    const bool glb = plan.config.output.format == sm::OutputFormat::Gltf;
+    std::cout << "results: " << shown(out) << "/ (" << (glb ? "sequence.glb, " : "frames/, ")
               << (plan.config.output.per_triangle_csv ? "distortion/, " : "")
               << "summary.csv, report.json)\n";
   }
@@ -268,18 +318,142 @@ int run(const Args& args) {
   return kOk;
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------
+// The single-mesh jobs (remesh, crossparam, smooth) and the measure command.
 
-int main(int argc, char** argv) {
-  int exit_code = kOk;
-  const std::optional<Args> args = parse_args(argc, argv, exit_code);
-  if (!args) return exit_code;
+int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
+  if (args.frames)
+    throw sm::ConfigError("--frames: only for \"job\": \"sequence\" (this is a " +
+                          sm::job_name(config.job) + " job)");
+  if (args.threads) config.threads = *args.threads;
+  const sm::MeshJobPlan plan = sm::plan_mesh_job(config);
+  if (args.dry_run) {
+    std::cout << sm::describe_mesh_plan(plan) << "dry run: nothing written\n";
+    return kOk;
+  }
+  if (!args.quiet) {
+    for (const std::string& w : plan.warnings) std::cerr << "seqmassage: warning: " << w << "\n";
+    std::cerr << "seqmassage: " << sm::job_name(config.job) << " " << plan.mesh_name << " ("
+              << plan.mesh.num_vertices() << " vertices), " << config.massage.iterations
+              << " iterations, " << plan.threads << " threads\n";
+  }
+  const sm::MeshJobResult result = sm::run_mesh_job(plan);
+  for (size_t i = plan.warnings.size(); i < result.warnings.size(); ++i)
+    std::cerr << "seqmassage: warning: " << result.warnings[i] << "\n";
+  const fs::path& out = plan.config.output.dir;
+  if (!args.quiet) {
+    std::vector<sm::MeasureRow> rows = {
+        {"before", plan.mesh_name, plan.reference_name, &result.before}};
+    if (result.after)
+      rows.push_back({"after", plan.mesh_name, plan.reference_name, &*result.after});
+    const sm::QualitySummary reference_quality =
+        sm::summarize_quality(sm::radius_ratio(plan.reference));
+    std::cout << sm::format_measures_table(
+        rows, config.job == sm::JobKind::Remesh ? &reference_quality : nullptr, plan.template_name);
+    std::cerr << "seqmassage: " << result.massage.iterations.size() << " iterations in "
+              << fixed(result.seconds_massage, 2) << " s (whole run " << fixed(result.seconds, 2)
+              << " s)\n";
+    std::cout << "results: " << shown(out) << "/ ("
+              << (result.ok() ? plan.output_mesh.filename().string() + ", " : "")
+              << "measures.csv, report.json"
+              << (plan.config.output.per_triangle_csv ? ", triangles.csv" : "") << ")\n";
+  }
+  if (!result.ok()) {
+    std::cerr << "seqmassage: the optimizer failed, no mesh written: " << result.massage.failure
+              << " (see " << shown(out / "report.json") << ")\n";
+    return kProcessing;
+  }
+  return kOk;
+}
+
+// Parses "seqmassage measure ..." (argv[0] is "measure"); nullopt: exit with `exit_code`.
+std::optional<sm::MeasureFilesRequest> parse_measure_args(int argc, char** argv, int& exit_code) {
+  sm::MeasureFilesRequest args;
+  std::vector<std::string> positional;
+  auto usage = [&](const std::string& message) {
+    std::cerr << "seqmassage measure: " << message << "\nTry 'seqmassage measure --help'.\n";
+    exit_code = kUsage;
+    return std::nullopt;
+  };
+  auto number = [](const std::string& text, double& out) {
+    try {
+      size_t used = 0;
+      out = std::stod(text, &used);
+      return used == text.size() && std::isfinite(out);
+    } catch (const std::exception&) {
+      return false;
+    }
+  };
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    std::optional<std::string> value;
+    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
+      value = a.substr(a.find('=') + 1);
+      a = a.substr(0, a.find('='));
+    }
+    auto take = [&]() -> std::optional<std::string> {
+      if (value) return value;
+      if (i + 1 < argc) return std::string(argv[++i]);
+      return std::nullopt;
+    };
+    if (a == "-h" || a == "--help") {
+      std::cout << kMeasureHelp;
+      exit_code = kOk;
+      return std::nullopt;
+    } else if (a == "--template" || a == "--csv" || a == "--json") {
+      const auto v = take();
+      if (!v || v->empty()) return usage(a + " needs a file name");
+      (a == "--template" ? args.templ : a == "--csv" ? args.csv : args.json) = *v;
+    } else if (a == "--spacing") {
+      const auto v = take();
+      double x = 0;
+      if (!v || !number(*v, x) || !(x > 0))
+        return usage("--spacing: expected a number > 0, got \"" + v.value_or("") + "\"");
+      args.options.spacing = x;
+    } else if (a == "--feature-angle") {
+      const auto v = take();
+      double x = 0;
+      if (!v || !number(*v, x) || !(x > 0 && x < 180))
+        return usage("--feature-angle: expected a number in (0, 180), got \"" + v.value_or("") +
+                     "\"");
+      args.options.feature_angle = x;
+    } else if (a == "--threads") {
+      const auto v = take();
+      if (!v || v->empty() || v->size() > 4 ||
+          v->find_first_not_of("0123456789") != std::string::npos || std::stoi(*v) > 4096)
+        return usage("--threads: expected an integer in [0, 4096], got \"" + v.value_or("") + "\"");
+      args.threads = std::stoi(*v);
+    } else if (a == "--") {
+      for (++i; i < argc; ++i) positional.push_back(argv[i]);
+    } else if (a.size() > 1 && a[0] == '-') {
+      return usage("unknown option '" + std::string(argv[i]) + "'");
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (positional.size() != 2)
+    return usage("expected two mesh files, MESH and REFERENCE, got " +
+                 std::to_string(positional.size()));
+  args.mesh = positional[0];
+  args.reference = positional[1];
+  return args;
+}
+
+int run_measure(const sm::MeasureFilesRequest& request) {
+  std::cout << sm::measure_files(request).table;
+  return kOk;
+}
+
+// Runs `body`, mapping the library's exceptions to exit codes (the only place that catches).
+template <class Body>
+int guarded(Body&& body, const std::string& config_name) {
   try {
-    return run(*args);
+    return body();
   } catch (const sm::ConfigError& e) {
     const std::string what = e.what();  // command-line options name themselves
-    std::cerr << "seqmassage: " << (what.rfind("--", 0) == 0 ? "" : args->config.string() + ": ")
-              << what << "\n";
+    std::cerr << "seqmassage: "
+              << (what.rfind("--", 0) == 0 || config_name.empty() ? "" : config_name + ": ") << what
+              << "\n";
     return kUsage;
   } catch (const sm::InputError& e) {
     std::cerr << "seqmassage: input error: " << e.what() << "\n";
@@ -294,4 +468,18 @@ int main(int argc, char** argv) {
     std::cerr << "seqmassage: internal error: " << e.what() << "\n";
     return kInternal;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int exit_code = kOk;
+  if (argc > 1 && std::string(argv[1]) == "measure") {
+    const auto args = parse_measure_args(argc - 1, argv + 1, exit_code);
+    if (!args) return exit_code;
+    return guarded([&] { return run_measure(*args); }, "");
+  }
+  const std::optional<Args> args = parse_args(argc, argv, exit_code);
+  if (!args) return exit_code;
+  return guarded([&] { return run(*args); }, args->config.string());
 }

@@ -69,6 +69,8 @@ void write_file_atomic(const fs::path& path, std::string_view content) {
 std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail("cannot open", path, errno ? errno : ENOENT);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail("cannot read", path, EISDIR);  // opens, but reads nothing
   std::ostringstream s;
   s << in.rdbuf();
   if (in.bad()) fail("cannot read", path, errno ? errno : EIO);

@@ -61,11 +61,17 @@ class StrictBuilder {
       error_ = "comments are not allowed in JSON";
       return false;
     }
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: <reason>" -> "<reason>"
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: <reason>" -> "<reason>",
+    // "[json.exception.out_of_range.406] number overflow parsing '1e999'" -> "number overflow ..."
     std::string what = ex.what();
     const size_t column = what.find("column ");
-    const size_t colon = column == std::string::npos ? what.find(": ") : what.find(": ", column);
-    error_ = colon == std::string::npos ? what : what.substr(colon + 2);
+    const size_t colon = column == std::string::npos ? std::string::npos : what.find(": ", column);
+    if (colon != std::string::npos) {
+      what = what.substr(colon + 2);
+    } else if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos) {
+      what = what.substr(what.find("] ") + 2);
+    }
+    error_ = what;
     return false;
   }
 
@@ -318,7 +324,7 @@ const Names<SolverKind> kSolvers = {{"iterative", SolverKind::Iterative},
                                     {"direct", SolverKind::Direct}};
 const Names<ClosestPointMode> kClosest = {{"local", ClosestPointMode::Local},
                                           {"exact", ClosestPointMode::Exact}};
-const Names<OutputFormat> kFormats = {{"obj", OutputFormat::Obj}};
+const Names<OutputFormat> kFormats = {{"obj", OutputFormat::Obj}, {"gltf", OutputFormat::Gltf}};
 const std::vector<std::string> kShapes = {"bending_tube"};
 
 void read_massage(const Section& s, MassageOptions& o) {
@@ -373,6 +379,63 @@ void read_synthetic(const Section& s, SyntheticConfig& c) {
          "below length");
 }
 
+// A glTF element chosen by name (a non-empty string) or by index (an integer >= 0); null or
+// absent keeps the default.
+void read_gltf_selector(const Section& s, const std::string& key, std::string& name,
+                        std::optional<int>& index) {
+  const json* v = s.get(key);
+  if (!v || v->is_null()) return;
+  if (v->is_string() && !v->get<std::string>().empty()) {
+    name = v->get<std::string>();
+    return;
+  }
+  if (const auto i = as_integer(*v); i && *i >= 0 && *i <= INT_MAX) {
+    index = static_cast<int>(*i);
+    return;
+  }
+  fail(s.path(key),
+       "expected a name (a non-empty string) or an index (an integer >= 0), got " + describe(*v));
+}
+
+// "input" of the sequence job: exactly one of "frames", "synthetic" and "gltf" (with "mesh",
+// "animation" and "fps", which only a glTF input takes), and "range".
+void read_sequence_input(const Section& input, const fs::path& base, InputConfig& in) {
+  in.frames = read_path(input, "frames", base);
+  if (input.has("synthetic")) {
+    in.synthetic.emplace();
+    read_synthetic(Section(input.get("synthetic"), "input.synthetic",
+                           {"shape", "frames", "segments", "rings", "radius", "length", "bend",
+                            "drift", "seed"}),
+                   *in.synthetic);
+  }
+  if (input.has("gltf")) {
+    GltfInputOptions& g = in.gltf.emplace();
+    g.file = read_path(input, "gltf", base);
+    read_gltf_selector(input, "mesh", g.mesh, g.mesh_index);
+    read_gltf_selector(input, "animation", g.animation, g.animation_index);
+    if (const json* fps = input.get("fps"); fps && !fps->is_null()) {
+      g.fps.emplace();
+      read(input, "fps", *g.fps, Interval{0.0, true, 1e6, false});
+    }
+  } else {
+    for (const char* key : {"mesh", "animation", "fps"})
+      if (input.has(key))
+        fail(input.path(key),
+             "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
+  }
+  const int given = int(input.has("frames")) + int(input.has("synthetic")) + int(input.has("gltf"));
+  if (given == 0)
+    fail("input",
+         "missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated sequence) or "
+         "\"gltf\" (a glTF animation)");
+  if (given > 1) fail("input", "give only one of \"frames\", \"synthetic\" and \"gltf\"");
+  const Section range(input.get("range"), "input.range", {"start", "stop", "step"});
+  read(range, "start", in.range.start, 0);
+  if (const json* stop = range.get("stop"); stop && !stop->is_null())
+    in.range.stop = to_int(*stop, range.path("stop"), in.range.start);
+  read(range, "step", in.range.step, 1);
+}
+
 }  // namespace
 
 // -----------------------------------------------------------------------------------------------
@@ -425,26 +488,12 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   root.require("job", "the kind of job: \"sequence\"");
   read(root, "job", c.job, kJobs);
 
-  const Section input(
-      &root.require("input", "\"frames\": a folder of OBJ frames, or \"synthetic\""), "input",
-      {"frames", "synthetic", "range"});
-  c.input.frames = read_path(input, "frames", base);
-  if (input.has("synthetic")) {
-    c.input.synthetic.emplace();
-    read_synthetic(Section(input.get("synthetic"), "input.synthetic",
-                           {"shape", "frames", "segments", "rings", "radius", "length", "bend",
-                            "drift", "seed"}),
-                   *c.input.synthetic);
-  }
-  if (input.has("frames") == input.has("synthetic"))
-    fail("input", input.has("frames") ? "give \"frames\" or \"synthetic\", not both"
-                                      : "missing \"frames\" (a folder of OBJ frames) or "
-                                        "\"synthetic\" (a generated sequence)");
-  const Section range(input.get("range"), "input.range", {"start", "stop", "step"});
-  read(range, "start", c.input.range.start, 0);
-  if (const json* stop = range.get("stop"); stop && !stop->is_null())
-    c.input.range.stop = to_int(*stop, range.path("stop"), c.input.range.start);
-  read(range, "step", c.input.range.step, 1);
+  read_sequence_input(
+      Section(&root.require("input",
+                            "\"frames\": a folder of OBJ frames, \"synthetic\" or "
+                            "\"gltf\": a glTF animation"),
+              "input", {"frames", "synthetic", "gltf", "mesh", "animation", "fps", "range"}),
+      base, c.input);
 
   const Section templ(root.get("template"), "template", {"frame", "mesh", "optimize"});
   read(templ, "frame", c.templ.frame, 0);
@@ -464,12 +513,23 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   }
 
   const Section output(&root.require("output", "an object with \"dir\", the output folder"),
-                       "output", {"dir", "format", "per_triangle_csv", "timings"});
+                       "output", {"dir", "format", "gltf", "per_triangle_csv", "timings"});
   output.require("dir", "the folder the results are written to");
   c.output.dir = read_path(output, "dir", base);
   read(output, "format", c.output.format, kFormats);
   read(output, "per_triangle_csv", c.output.per_triangle_csv);
   read(output, "timings", c.output.timings);
+  if (c.output.format == OutputFormat::Gltf && !c.input.gltf)
+    fail(output.path("format"),
+         "\"gltf\" needs a glTF input (input.gltf), whose mesh, materials and textures the "
+         "output keeps; use \"obj\" for OBJ frames");
+  if (output.has("gltf")) {
+    if (c.output.format != OutputFormat::Gltf)
+      fail(output.path("gltf"), "only applies to output.format \"gltf\"");
+    const Section gltf(output.get("gltf"), "output.gltf", {"frames_per_mesh", "normals"});
+    read(gltf, "frames_per_mesh", c.output.gltf.frames_per_mesh, 1, 100000);
+    read(gltf, "normals", c.output.gltf.normals);
+  }
 
   read_massage(
       Section(root.get("massage"), "massage",
@@ -491,6 +551,15 @@ json to_json(const JobConfig& c) {
     input["synthetic"] = {{"shape", s.shape}, {"frames", s.frames}, {"segments", s.segments},
                           {"rings", s.rings}, {"radius", s.radius}, {"length", s.length},
                           {"bend", s.bend},   {"drift", s.drift},   {"seed", s.seed}};
+  } else if (c.input.gltf) {
+    const GltfInputOptions& g = *c.input.gltf;
+    const auto selector = [](const std::string& name, const std::optional<int>& index) {
+      return index ? json(*index) : name.empty() ? json(nullptr) : json(name);
+    };
+    input["gltf"] = g.file.string();
+    input["mesh"] = selector(g.mesh, g.mesh_index);
+    input["animation"] = selector(g.animation, g.animation_index);
+    input["fps"] = g.fps ? json(*g.fps) : json(nullptr);
   } else {
     input["frames"] = c.input.frames.string();
   }
@@ -506,6 +575,9 @@ json to_json(const JobConfig& c) {
                  {"format", name_of(c.output.format, kFormats)},
                  {"per_triangle_csv", c.output.per_triangle_csv},
                  {"timings", c.output.timings}};
+  if (c.output.format == OutputFormat::Gltf)
+    j["output"]["gltf"] = {{"frames_per_mesh", c.output.gltf.frames_per_mesh},
+                           {"normals", c.output.gltf.normals}};
   const MassageOptions& m = c.massage;
   j["massage"] = {{"weights", name_of(m.weights, kWeights)},
                   {"boundary_weights", name_of(m.boundary_weights, kBoundary)},
@@ -565,6 +637,205 @@ FrameRange parse_frame_range(std::string_view text, std::string_view what) {
 std::string format_frame_range(const FrameRange& range) {
   return std::to_string(range.start) + ":" + (range.stop ? std::to_string(*range.stop) : "") + ":" +
          std::to_string(range.step);
+}
+
+// -----------------------------------------------------------------------------------------------
+// The single-mesh jobs ("remesh", "crossparam", "smooth"): their own sections, parsed here so the
+// sequence job's parsing above stays as it is. "input" means something else per job kind.
+
+namespace {
+
+const Names<JobKind> kAllJobs = {{"sequence", JobKind::Sequence},
+                                 {"remesh", JobKind::Remesh},
+                                 {"crossparam", JobKind::Crossparam},
+                                 {"smooth", JobKind::Smooth}};
+const Names<MeshOutputFormat> kMeshFormats = {{"same", MeshOutputFormat::Same},
+                                              {"obj", MeshOutputFormat::Obj},
+                                              {"off", MeshOutputFormat::Off},
+                                              {"ply", MeshOutputFormat::Ply}};
+// Keys of the "massage" section (the same for every job; parse_config lists them too, and a test
+// checks that both accept every key to_json writes).
+const std::vector<std::string> kMassageKeys = {"weights",
+                                               "boundary_weights",
+                                               "iterations",
+                                               "mu",
+                                               "samples",
+                                               "tolerance",
+                                               "lawson",
+                                               "lawson_floor",
+                                               "solver",
+                                               "solver_tolerance",
+                                               "solver_max_iterations",
+                                               "closest_points",
+                                               "walk_max_steps",
+                                               "pin_boundary",
+                                               "pinned"};
+// Keys that only the sequence job's "input" knows (including its glTF input), refused with a note.
+const std::vector<std::string> kSequenceInputKeys = {"frames", "synthetic", "range",
+                                                     "gltf",   "animation", "fps"};
+
+void read_mesh_input(const Section& s, JobKind job, const fs::path& base, MeshJobInput& in) {
+  for (const std::string& key : kSequenceInputKeys)
+    if (s.has(key))
+      fail(s.path(key), "only for \"job\": \"sequence\"; the " + job_name(job) +
+                            " job reads one mesh file from \"input.mesh\"");
+  s.require("mesh", "the mesh file to optimize (.obj, .off or .ply)");
+  in.mesh = read_path(s, "mesh", base);
+  if (job == JobKind::Remesh) {
+    s.require("reference", "the source surface the remesh approximates (.obj, .off or .ply)");
+    in.reference = read_path(s, "reference", base);
+  } else if (s.has("reference")) {
+    fail(s.path("reference"), "only for \"job\": \"remesh\"; the " + job_name(job) +
+                                  " job keeps the mesh close to itself as loaded");
+  }
+}
+
+void read_measures(const Section& s, MeasureOptions& m) {
+  read(s, "spacing", m.spacing, Interval{0.0, true});
+  read(s, "feature_angle", m.feature_angle, Interval{0.0, true, 180.0, true});
+  if (const json* v = s.get("shear_bins")) {
+    const std::string path = s.path("shear_bins");
+    if (!v->is_array() || v->size() < 2)
+      fail(path, "expected an array of at least two increasing bin edges, got " + describe(*v));
+    std::vector<double> edges;
+    for (size_t i = 0; i < v->size(); ++i) {
+      const json& e = (*v)[i];
+      const std::string where = path + "[" + std::to_string(i) + "]";
+      double x = 0.0;
+      if (e.is_string() && e.get<std::string>() == "inf")
+        x = INFINITY;
+      else if (e.is_number() && std::isfinite(e.get<double>()))
+        x = e.get<double>();
+      else
+        fail(where, "expected a number or \"inf\", got " + describe(e));
+      if (!edges.empty() && !(x > edges.back()))
+        fail(where,
+             "bin edges must increase, got " + describe(e) + " after " + describe((*v)[i - 1]));
+      edges.push_back(x);
+    }
+    m.shear_bins = std::move(edges);
+  }
+}
+
+}  // namespace
+
+MassageOptions default_massage_options(JobKind job) {
+  MassageOptions o;
+  if (job == JobKind::Smooth) {
+    // Uniform weights equalize the triangles (§4). Every vertex is tied to its current closest
+    // point, so the tangential relaxation advances only so far per iteration: on the paper's
+    // fandisk, 15 iterations reach a mean radius ratio of 0.937, 60 reach 0.947. Edge samples keep
+    // the distance low; with them the automatic μ climbs to 0.75-0.78 (‖B‖ grows with the samples
+    // and with Lawson's weights) and a few sharp edges get cut, which μ = 0.7 avoids. README,
+    // "Reproducing the paper", has the numbers.
+    o.weights = WeightKind::Uniform;
+    o.iterations = 60;
+    o.samples = SampleKind::Edges;
+    o.mu = 0.7;
+  }
+  return o;
+}
+
+std::string job_name(JobKind job) {
+  return name_of(job, kAllJobs);
+}
+
+JobKind parse_job_kind(const json& document) {
+  if (!document.is_object()) fail("", "expected an object, got " + describe(document));
+  const auto it = document.find("job");
+  if (it == document.end())
+    fail("job", "missing (the kind of job: " + quoted_list(keys_of(kAllJobs)) + ")");
+  JobKind job = JobKind::Sequence;
+  const json only_job = {{"job", *it}};  // the other keys are checked by the job's parser
+  read(Section(&only_job, "", {"job"}), "job", job, kAllJobs);
+  return job;
+}
+
+MeshJobConfig parse_mesh_job_config(const json& document, const fs::path& base_dir) {
+  const fs::path base = fs::absolute(base_dir).lexically_normal();
+  MeshJobConfig c;
+  c.job = parse_job_kind(document);
+  if (c.job == JobKind::Sequence)
+    fail("job", "\"sequence\" is not a single-mesh job (use parse_config)");
+  const Section root(&document, "",
+                     {"job", "input", "template", "output", "massage", "measures", "threads"});
+
+  const std::string what_input = c.job == JobKind::Remesh
+                                     ? "\"mesh\": the remesh, and \"reference\": its source"
+                                     : "\"mesh\": the mesh file to optimize";
+  read_mesh_input(Section(&root.require("input", what_input), "input",
+                          [&] {
+                            std::vector<std::string> keys = {"mesh", "reference"};
+                            keys.insert(keys.end(), kSequenceInputKeys.begin(),
+                                        kSequenceInputKeys.end());
+                            return keys;
+                          }()),
+                  c.job, base, c.input);
+
+  if (c.job == JobKind::Crossparam) {
+    const Section templ(&root.require("template",
+                                      "an object with \"mesh\": the source mesh whose "
+                                      "triangle shapes are copied"),
+                        "template", {"mesh", "frame", "optimize"});
+    if (templ.has("frame") || templ.has("optimize"))
+      fail(templ.path(templ.has("frame") ? "frame" : "optimize"),
+           "only for \"job\": \"sequence\"; the crossparam template is a \"mesh\" file");
+    templ.require("mesh", "the source mesh, with the input's connectivity");
+    c.template_mesh = read_path(templ, "mesh", base);
+  } else if (root.has("template")) {
+    fail("template", c.job == JobKind::Remesh
+                         ? "not used by the remesh job (the remesh is its own template)"
+                         : "not used by the smooth job (it uses uniform or mean value weights of "
+                           "the mesh itself)");
+  }
+
+  const Section output(&root.require("output", "an object with \"dir\", the output folder"),
+                       "output", {"dir", "format", "per_triangle_csv", "timings"});
+  output.require("dir", "the folder the results are written to");
+  c.output.dir = read_path(output, "dir", base);
+  read(output, "format", c.output.format, kMeshFormats);
+  read(output, "per_triangle_csv", c.output.per_triangle_csv);
+  read(output, "timings", c.output.timings);
+
+  c.massage = default_massage_options(c.job);
+  read_massage(Section(root.get("massage"), "massage", kMassageKeys), c.massage);
+  read_measures(
+      Section(root.get("measures"), "measures", {"spacing", "feature_angle", "shear_bins"}),
+      c.measures);
+  read(root, "threads", c.threads, 0, 4096);
+  return c;
+}
+
+json to_json(const MeshJobConfig& c) {
+  json j;
+  j["job"] = job_name(c.job);
+  j["input"] = {{"mesh", c.input.mesh.string()}};
+  if (c.job == JobKind::Remesh) j["input"]["reference"] = c.input.reference.string();
+  if (c.job == JobKind::Crossparam) j["template"] = {{"mesh", c.template_mesh.string()}};
+  j["output"] = {{"dir", c.output.dir.string()},
+                 {"format", name_of(c.output.format, kMeshFormats)},
+                 {"per_triangle_csv", c.output.per_triangle_csv},
+                 {"timings", c.output.timings}};
+  JobConfig sequence;  // the "massage" section is written the same way for every job
+  sequence.massage = c.massage;
+  j["massage"] = to_json(sequence)["massage"];
+  json bins = json::array();
+  for (double e : c.measures.shear_bins) bins.push_back(std::isfinite(e) ? json(e) : json("inf"));
+  j["measures"] = {{"spacing", c.measures.spacing},
+                   {"feature_angle", c.measures.feature_angle},
+                   {"shear_bins", bins}};
+  j["threads"] = c.threads;
+  return j;
+}
+
+AnyJobConfig parse_any_config(const json& document, const fs::path& base_dir) {
+  if (parse_job_kind(document) == JobKind::Sequence) return parse_config(document, base_dir);
+  return parse_mesh_job_config(document, base_dir);
+}
+
+AnyJobConfig load_any_config(const fs::path& path) {
+  const std::string text = read_file(path);
+  return parse_any_config(parse_json_strict(text), fs::absolute(path).parent_path());
 }
 
 }  // namespace sm

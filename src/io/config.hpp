@@ -1,19 +1,27 @@
 #pragma once
 /// The job configuration: a JSON file mapped one-to-one onto the options structs below (key names
 /// in quotes), checked completely before anything runs.
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "io/gltf_load.hpp"
+#include "io/gltf_write.hpp"
 #include "massage/massage.hpp"
 
 namespace sm {
 
 enum class JobKind {
-  Sequence,  ///< "sequence": correct the texture swimming of a mesh sequence (paper §3.1)
+  Sequence,    ///< "sequence": correct the texture swimming of a mesh sequence (paper §3.1)
+  Remesh,      ///< "remesh": bring a remesh closer to its source surface (paper §3.3)
+  Crossparam,  ///< "crossparam": copy a source mesh's triangle shapes onto a target (paper §3.2)
+  Smooth,      ///< "smooth": feature-preserving smoothing, uniform weights (paper §4)
 };
 
 /// "input.synthetic": a generated drifted sequence, a tube bending over time whose vertices slide
@@ -39,12 +47,16 @@ struct FrameRange {
 };
 
 struct InputConfig {
-  /// "frames": folder of OBJ files, one per frame, in natural order. Exactly one of "frames" and
-  /// "synthetic" is given.
+  /// "frames": folder of OBJ files, one per frame, in natural order. Exactly one of "frames",
+  /// "synthetic" and "gltf" is given.
   std::filesystem::path frames;
   /// "synthetic": generate the frames into <output.dir>/input and the clean frames (the ground
   /// truth) into <output.dir>/ground_truth, then process them like a folder.
   std::optional<SyntheticConfig> synthetic;
+  /// "gltf": a glTF 2.0 animation (.gltf or .glb) sampled to frames, with the keys beside it:
+  /// "mesh" (name or index; default: the first skinned, else morphed, else instantiated mesh),
+  /// "animation" (name or index; default 0) and "fps" (> 0; default: the keyframe times).
+  std::optional<GltfInputOptions> gltf;
   FrameRange range;  ///< "range"
 };
 
@@ -55,12 +67,14 @@ struct TemplateConfig {
 };
 
 enum class OutputFormat {
-  Obj,  ///< "obj"
+  Obj,   ///< "obj": frames/<frame name>.obj
+  Gltf,  ///< "gltf": sequence.glb, one morph target per frame (glTF input only)
 };
 
 struct OutputConfig {
   std::filesystem::path dir;                ///< "dir": output folder (required)
-  OutputFormat format = OutputFormat::Obj;  ///< "format": "obj"
+  OutputFormat format = OutputFormat::Obj;  ///< "format": "obj" or "gltf"
+  GltfWriteOptions gltf;                    ///< "gltf": {"frames_per_mesh", "normals"}
   bool per_triangle_csv = false;            ///< "per_triangle_csv": write distortion/<frame>.csv
   /// "timings": run times in summary.csv and report.json; false writes 0 seconds, so that a run
   /// reproduces every output byte.
@@ -104,5 +118,82 @@ std::string format_frame_range(const FrameRange& range);
 
 /// Levenshtein distance between two strings (for "did you mean" suggestions).
 int edit_distance(std::string_view a, std::string_view b);
+
+// ---------------------------------------------------------------------------------------------
+// The single-mesh jobs: "remesh", "crossparam" and "smooth" (one mesh in, one mesh out).
+
+/// "input" of a single-mesh job.
+struct MeshJobInput {
+  std::filesystem::path mesh;       ///< "mesh": M, the mesh to optimize (.obj, .off or .ply)
+  std::filesystem::path reference;  ///< "reference": remesh only (required): N, the source surface
+};
+
+/// "output.format" of a single-mesh job.
+enum class MeshOutputFormat {
+  Same,  ///< "same": the input's format (an OBJ keeps its texture coordinates, groups, polygons)
+  Obj,   ///< "obj"
+  Off,   ///< "off"
+  Ply,   ///< "ply" (binary little-endian)
+};
+
+struct MeshJobOutput {
+  std::filesystem::path dir;                         ///< "dir": output folder (required)
+  MeshOutputFormat format = MeshOutputFormat::Same;  ///< "format"
+  bool per_triangle_csv = false;  ///< "per_triangle_csv": triangles.csv, quality per triangle
+  bool timings = true;            ///< "timings": false writes 0 seconds (reproducible bytes)
+};
+
+/// "measures": how the report measures the meshes (paper Tables 1–3).
+struct MeasureOptions {
+  /// "spacing": distance between the Metro-style samples on edges and inside triangles, as a
+  /// fraction of the sampled mesh's mean edge length, > 0.
+  double spacing = 0.25;
+  /// "feature_angle": an edge of the reference whose two triangles' normals differ by more than
+  /// this many degrees is a feature (sharp) edge, in (0, 180).
+  double feature_angle = 30.0;
+  /// "shear_bins": increasing bin edges of the shear histogram (eq. 8); a last edge "inf" counts
+  /// the degenerate triangles too.
+  std::vector<double> shear_bins = {0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, INFINITY};
+};
+
+struct MeshJobConfig {
+  JobKind job = JobKind::Smooth;  ///< "job": "remesh", "crossparam" or "smooth" (required)
+  MeshJobInput input;             ///< "input" (required)
+  /// "template": {"mesh": path}, crossparam only (required there): T, a mesh with the input's
+  /// connectivity whose triangle shapes are copied.
+  std::filesystem::path template_mesh;
+  MeshJobOutput output;     ///< "output" (required)
+  MassageOptions massage;   ///< "massage": every key of MassageOptions, defaults by job
+  MeasureOptions measures;  ///< "measures"
+  int threads = 0;          ///< "threads": worker threads, 0 = one per core
+};
+
+/// The defaults of "massage" for a single-mesh job: MassageOptions' own for remesh and
+/// crossparam; for smooth, uniform weights, 60 iterations, edge samples and μ = 0.7 (see README).
+MassageOptions default_massage_options(JobKind job);
+
+/// Any job's configuration.
+using AnyJobConfig = std::variant<JobConfig, MeshJobConfig>;
+
+/// The job kind named by "job" (required; ConfigError with the nearest kind for a typo).
+JobKind parse_job_kind(const nlohmann::json& document);
+
+/// The JSON name of a job kind ("sequence", "remesh", "crossparam", "smooth").
+std::string job_name(JobKind job);
+
+/// Maps a parsed single-mesh job config onto MeshJobConfig, with the same strictness and messages
+/// as parse_config (keys of the sequence job's "input" are refused with a note). Relative paths
+/// are made absolute against `base_dir`.
+MeshJobConfig parse_mesh_job_config(const nlohmann::json& json,
+                                    const std::filesystem::path& base_dir);
+
+/// The resolved config with every key: parse_mesh_job_config of it gives the same config back.
+nlohmann::json to_json(const MeshJobConfig& config);
+
+/// Dispatches on "job": parse_config for "sequence", parse_mesh_job_config for the others.
+AnyJobConfig parse_any_config(const nlohmann::json& json, const std::filesystem::path& base_dir);
+
+/// load_config for any job kind.
+AnyJobConfig load_any_config(const std::filesystem::path& path);
 
 }  // namespace sm

@@ -13,23 +13,31 @@ namespace {
 /// Largest frame count fps sampling may produce (a guard against a mistyped rate).
 constexpr double kMaxFrames = 1e7;
 
-/// Index of the element called `key` in `names`: an exact name first, else a decimal index.
+/// Index of the element chosen by `index`, else called `key` in `names`: an exact name first,
+/// else a decimal index.
 int resolve(const fs::path& file, const char* array, const char* what, const std::string& key,
-            const std::vector<std::string>& names) {
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == key) return int(i);
-  }
-  if (!key.empty() && key.find_first_not_of("0123456789") == std::string::npos && key.size() < 10) {
-    const int i = std::stoi(key);
-    if (size_t(i) < names.size()) return i;
+            std::optional<int> index, const std::vector<std::string>& names) {
+  if (index) {
+    if (*index >= 0 && size_t(*index) < names.size()) return *index;
+  } else {
+    for (size_t i = 0; i < names.size(); ++i) {
+      if (names[i] == key) return int(i);
+    }
+    if (!key.empty() && key.find_first_not_of("0123456789") == std::string::npos &&
+        key.size() < 10) {
+      const int i = std::stoi(key);
+      if (size_t(i) < names.size()) return i;
+    }
   }
   std::string listing;
   for (size_t i = 0; i < names.size(); ++i) {
     listing +=
         (i ? ", " : "") + std::to_string(i) + (names[i].empty() ? "" : " '" + names[i] + "'");
   }
+  const std::string wanted =
+      index ? std::string("numbered ") + std::to_string(*index) : "named or numbered '" + key + "'";
   throw_gltf_error(file, array,
-                   std::string("no ") + what + " named or numbered '" + key + "' (the file has " +
+                   std::string("no ") + what + " " + wanted + " (the file has " +
                        (names.empty() ? std::string("none") : listing) + ")");
 }
 
@@ -88,13 +96,27 @@ GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
   scene->file = load_gltf_file(options.file);
   const GltfFile& file = scene->file;
   const tinygltf::Model& m = file.model;
+  // The rig checks the nodes too, but choosing the mesh reads them first (tinygltf does not
+  // check these indices; found by fuzzing).
+  for (size_t n = 0; n < m.nodes.size(); ++n) {
+    const tinygltf::Node& node = m.nodes[n];
+    if (node.mesh >= int(m.meshes.size())) {
+      throw_gltf_error(file.path, "nodes[" + std::to_string(n) + "]",
+                       "mesh " + std::to_string(node.mesh) + " does not exist");
+    }
+    if (node.skin >= int(m.skins.size())) {
+      throw_gltf_error(file.path, "nodes[" + std::to_string(n) + "]",
+                       "skin " + std::to_string(node.skin) + " does not exist");
+    }
+  }
 
   GltfSequence s;
   s.file = options.file;
   std::vector<std::string> names;
   for (const tinygltf::Mesh& mesh : m.meshes) names.push_back(mesh.name);
-  s.mesh = options.mesh.empty() ? default_mesh(file)
-                                : resolve(file.path, "meshes", "mesh", options.mesh, names);
+  s.mesh = options.mesh.empty() && !options.mesh_index
+               ? default_mesh(file)
+               : resolve(file.path, "meshes", "mesh", options.mesh, options.mesh_index, names);
   s.mesh_name = m.meshes[size_t(s.mesh)].name;
   s.node = node_of_mesh(m, s.mesh);
   if (s.node < 0) {
@@ -108,9 +130,10 @@ GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
   }
   names.clear();
   for (const tinygltf::Animation& a : m.animations) names.push_back(a.name);
-  s.animation = options.animation.empty()
+  s.animation = options.animation.empty() && !options.animation_index
                     ? 0
-                    : resolve(file.path, "animations", "animation", options.animation, names);
+                    : resolve(file.path, "animations", "animation", options.animation,
+                              options.animation_index, names);
   s.animation_name = m.animations[size_t(s.animation)].name;
 
   scene->rig = load_gltf_rig(file, s.animation);

@@ -23,6 +23,10 @@ struct GltfInputOptions {
   std::string animation;
   /// Frames per second; absent = one frame per keyframe time of the animation.
   std::optional<double> fps;
+  /// meshes[] / animations[] index given as a number (the config's integer form): an index only,
+  /// never a name; replaces `mesh` / `animation` when set.
+  std::optional<int> mesh_index = std::nullopt;
+  std::optional<int> animation_index = std::nullopt;
 };
 
 struct GltfScene;  // io/gltf_scene.hpp: the source asset, rig and mesh geometry

@@ -82,8 +82,8 @@ ObjFile read_obj(const std::filesystem::path& path);
 /// the triangles whose corners use it, normalized. When each position uses one vn this equals
 /// sm::vertex_normals mapped through the corners; a vn shared by several positions (flat shading,
 /// deduplicated normals) gets the area-weighted normal of all the triangles that use it, so hard
-/// edges stay hard. A vn no face refers to, or whose triangles all have zero area, is kept as it
-/// was. Line breaks are kept as read. Byte-deterministic. Throws InputError if `V` has the wrong
+/// edges stay hard. A vn no face refers to, whose triangles all have zero area, or whose sum
+/// overflows (coordinates near 1e150 and beyond), is kept as it was. Line breaks are kept as read. Byte-deterministic. Throws InputError if `V` has the wrong
 /// number of rows or a non-finite coordinate.
 std::string format_obj(const ObjFile& file, const Positions& V);
 

@@ -30,7 +30,8 @@ bool same_row(const Positions& a, const Positions& b, Eigen::Index i) {
 }
 
 // Area-weighted normal of every vn over the triangles whose corners use it, with the arithmetic
-// of sm::vertex_normals; `valid[j]` is false where no triangle with area uses vn j.
+// of sm::vertex_normals; `valid[j]` is false where no triangle with area uses vn j, or where the
+// sum is not finite.
 Positions corner_normals(const ObjFile& file, const Positions& V, std::vector<char>& valid) {
   Positions N = Positions::Zero(file.normals.rows(), 3);
   for (int f = 0; f < file.num_faces(); ++f) {
@@ -48,8 +49,12 @@ Positions corner_normals(const ObjFile& file, const Positions& V, std::vector<ch
   }
   valid.assign(static_cast<size_t>(N.rows()), 0);
   for (Eigen::Index j = 0; j < N.rows(); ++j) {
-    const double len = N.row(j).norm();
-    if (len > 0.0) {
+    double len = N.row(j).norm();
+    if (!std::isfinite(len) && N.row(j).allFinite()) {  // the norm overflowed, the sum did not
+      N.row(j) /= N.row(j).cwiseAbs().maxCoeff();
+      len = N.row(j).norm();
+    }
+    if (len > 0.0 && std::isfinite(len)) {  // not when the sum overflowed (coordinates ~1e150)
       N.row(j) /= len;
       valid[static_cast<size_t>(j)] = 1;
     }

@@ -304,6 +304,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
   for (const PlyElement& e : header.elements) {
     const bool is_vertex = &e == &ve, is_face = &e == &fe;
     const int np = static_cast<int>(e.properties.size());
+    if (np == 0) continue;  // items without properties hold no data, however many are claimed
     for (int64_t item = 0; item < e.count; ++item) {
       std::array<uint8_t, 3> rgb{};
       double xyz_value[3] = {0.0, 0.0, 0.0};

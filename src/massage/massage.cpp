@@ -87,6 +87,7 @@ struct Massager::Impl {
   std::vector<std::array<int, 2>> edges;  // for the mean edge length of M
   std::vector<unsigned char> pinned;      // n flags
   int num_pinned = 0;
+  std::vector<unsigned char> isolated;    // n flags: vertices in no triangle (also pinned)
 
   double mean_edge_length(const Positions& V) const {
     if (edges.empty()) return 0.0;
@@ -98,13 +99,16 @@ struct Massager::Impl {
 
 namespace {
 
-// The first triangle around every vertex (-1 for an isolated one): the starting correspondences
-// when M and N share the connectivity (vertex i of M starts on vertex i of N).
-std::vector<SurfacePoint> vertex_hints(const Topology& topo, int count) {
+// The starting correspondences when M and N share the connectivity: vertex i of M starts on the
+// first triangle around vertex i (none for a vertex in no triangle); with `samples`, for N's
+// samples, whose first ones are N's vertices that lie in a triangle, in order.
+std::vector<SurfacePoint> vertex_hints(const Topology& topo, int count, bool samples) {
   std::vector<SurfacePoint> hints(count);
-  for (int i = 0; i < count && i < topo.num_vertices; ++i)
-    if (topo.vertex_triangles.size(i) > 0)
-      hints[i].triangle = topo.vertex_triangles.data[topo.vertex_triangles.begin(i)];
+  for (int v = 0, j = 0; v < topo.num_vertices && j < count; ++v) {
+    if (topo.vertex_triangles.size(v) > 0)
+      hints[j].triangle = topo.vertex_triangles.data[topo.vertex_triangles.begin(v)];
+    if (!samples || topo.vertex_triangles.size(v) > 0) ++j;
+  }
   return hints;
 }
 
@@ -129,6 +133,11 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   if (s.options.pin_boundary)
     for (int v = 0; v < n; ++v)
       if (s.topology->is_boundary_vertex[v]) s.pinned[v] = 1;
+  // A vertex in no triangle has no shape to keep and no surface to stay on: it keeps its position
+  // and takes no part in the distance energy (nor in Lawson's normalization).
+  s.isolated.assign(n, 0);
+  for (int v = 0; v < n; ++v)
+    if (s.topology->vertex_triangles.size(v) == 0) s.isolated[v] = s.pinned[v] = 1;
   for (unsigned char p : s.pinned) s.num_pinned += p;
 }
 
@@ -178,12 +187,12 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
   const Positions& W = reference.samples();
   const SurfaceView on_n{&N.V, &N.F, &reference.topology(), &reference.bvh(), &reference.planes()};
   const SurfaceView on_m{&M.V, &M.F, s.topology.get(), &bvh_m, &planes_m};
-  // With the same connectivity, vertex i of M and sample i of N (N's vertex i) start at each
+  // With the same connectivity, vertex i of M and the sample of N's vertex i start at each
   // other's vertex i: a bound that makes the first, exact queries cheap (free when M starts on N).
   std::vector<SurfacePoint> v_hat, w_hat;  // v̂_i on N, ŵ_j on M
   if (N.F.rows() == s.F.rows() && N.F == s.F) {
-    v_hat = vertex_hints(*s.topology, n);
-    w_hat = vertex_hints(*s.topology, static_cast<int>(W.rows()));
+    v_hat = vertex_hints(*s.topology, n, false);
+    w_hat = vertex_hints(*s.topology, static_cast<int>(W.rows()), true);
   }
   const bool exact = o.closest_points == ClosestPointMode::Exact;
   update_correspondences(on_n, M.V, true, o.walk_max_steps, v_hat);
@@ -274,7 +283,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     it.exact_queries += update_correspondences(on_m, W, exact, o.walk_max_steps, w_hat, refit_m);
     it.seconds_closest = seconds_since(t0);
 
-    for (int i = 0; i < n; ++i) d_alpha[i] = std::sqrt(v_hat[i].dist2);
+    for (int i = 0; i < n; ++i) d_alpha[i] = s.isolated[i] ? 0.0 : std::sqrt(v_hat[i].dist2);
     for (int j = 0; j < d_beta.size(); ++j) d_beta[j] = std::sqrt(w_hat[j].dist2);
     multiply(s.pattern.shape_matrix(), M.V, AV);
     it.energy = mu * AV.squaredNorm() +

@@ -89,7 +89,8 @@ class Massager {
  public:
   /// Throws InputError (naming `name`) if T has out-of-range indices, non-finite coordinates or
   /// no triangle; ConfigError for out-of-range options. Degenerate template corners fall back to
-  /// uniform weights (weights().fallback_vertices counts them).
+  /// uniform weights (weights().fallback_vertices counts them). Vertices in no triangle are
+  /// pinned: they keep their start position and take no part in the distance energy.
   Massager(const TriMesh& templ, MassageOptions options, const char* name = "template");
   ~Massager();
   Massager(Massager&&) noexcept;

@@ -25,9 +25,15 @@ Positions surface_samples(const TriMesh& mesh, const Topology& topo, SampleKind 
     for (int t = 0; t < m; ++t)
       extra.push_back((mesh.vertex(mesh.F(t, 0)) + mesh.vertex(mesh.F(t, 1)) +
                        mesh.vertex(mesh.F(t, 2))) / 3.0);
-  Positions s(n + static_cast<int>(extra.size()), 3);
-  s.topRows(n) = mesh.V;
-  for (size_t i = 0; i < extra.size(); ++i) s.row(n + static_cast<int>(i)) = extra[i].transpose();
+  // Vertices in no triangle are not on the surface: they are no samples of it.
+  std::vector<int> on_surface;
+  on_surface.reserve(n);
+  for (int i = 0; i < n; ++i)
+    if (topo.vertex_triangles.size(i) > 0) on_surface.push_back(i);
+  const int k = static_cast<int>(on_surface.size());
+  Positions s(k + static_cast<int>(extra.size()), 3);
+  for (int j = 0; j < k; ++j) s.row(j) = mesh.V.row(on_surface[j]);
+  for (size_t i = 0; i < extra.size(); ++i) s.row(k + static_cast<int>(i)) = extra[i].transpose();
   return s;
 }
 

@@ -32,7 +32,8 @@ class Reference {
   const Topology& topology() const { return *topology_; }
   const TriangleBvh& bvh() const { return bvh_; }
   const TrianglePlanes& planes() const { return planes_; }
-  /// The samples w_j (s×3): N's vertices first (sample j < n is vertex j), then the extra ones.
+  /// The samples w_j (s×3): N's vertices that lie in a triangle first, in order, then the extra
+  /// ones (vertices in no triangle are not on the surface).
   const Positions& samples() const { return samples_; }
   double bounding_box_diagonal() const { return diagonal_; }
 
@@ -45,8 +46,8 @@ class Reference {
   double diagonal_ = 0.0;
 };
 
-/// Sample points of `mesh` of the given kind (vertices first, then edge midpoints, then face
-/// centroids), each edge once.
+/// Sample points of `mesh` of the given kind (its vertices that lie in a triangle first, then edge
+/// midpoints, then face centroids), each edge once.
 Positions surface_samples(const TriMesh& mesh, const Topology& topo, SampleKind kind);
 
 }  // namespace sm

@@ -41,7 +41,8 @@ std::vector<std::string> summary_columns() {
           "iterations",
           "seconds",
           "status",
-          "failure"};
+          "failure",
+          "time"};
 }
 
 std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool timings) {
@@ -52,7 +53,9 @@ std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool tim
     csv.cell(f.shear_after.max).cell(f.shear_after.mean).cell(f.shear_after.p95);
     csv.cell(f.out_to_in.max).cell(f.out_to_in.rms).cell(f.in_to_out.max).cell(f.in_to_out.rms);
     csv.cell(f.iterations).cell(timings ? f.seconds : 0.0);
-    csv.cell(status_name(f.status)).cell(f.failure).end_row();
+    csv.cell(status_name(f.status)).cell(f.failure);
+    if (f.time) csv.cell(*f.time);
+    csv.end_row();
   }
   return csv.str();
 }
@@ -87,6 +90,7 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
   json r;
   r["versions"] = version_info();
   r["config"] = to_json(c);
+  r["input"] = plan.source->report();
   r["template"] = {{"source", plan.template_source},
                    {"vertices", plan.templ.num_vertices()},
                    {"triangles", plan.templ.num_triangles()},
@@ -109,7 +113,7 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
     in_to_out = std::max(in_to_out, f.in_to_out.max);
   }
   const double n = std::max<size_t>(1, result.frames.size());
-  r["totals"] = {{"frames_listed", plan.frames.size()},
+  r["totals"] = {{"frames_listed", plan.source->size()},
                  {"frames_selected", plan.selected.size()},
                  {"frames_written", result.frames.size()},
                  {"optimized", optimized},
@@ -129,7 +133,7 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
                  {"hausdorff_max", number(std::max(out_to_in, in_to_out))}};
   r["interrupted"] = result.interrupted;
 
-  if (plan.synthetic) {
+  if (const std::filesystem::path truth = plan.source->ground_truth_dir(); !truth.empty()) {
     json frames = json::array();
     double before = 0, after = 0;
     for (const FrameSummary& f : result.frames) {
@@ -144,7 +148,7 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
                         {"max_after", number(g.max_after)}});
     }
     r["ground_truth"] = {
-        {"folder", plan.ground_truth_dir.string()},
+        {"folder", truth.string()},
         {"unit", "mean edge length of the template"},
         {"what", "distance of every vertex to its position on the clean (undrifted) frame"},
         {"mean_before", number(before / n)},
@@ -159,9 +163,9 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
   r["failures"] = failures;
   r["warnings"] = result.warnings;
   r["outputs"] = {{"dir", c.output.dir.string()},
-                  {"frames", "frames/"},
                   {"distortion", c.output.per_triangle_csv ? json("distortion/") : json(nullptr)},
                   {"summary", "summary.csv"}};
+  r["outputs"].update(plan.sink->report());
   if (c.output.timings)
     r["run"] = {
         {"threads", plan.threads},

@@ -12,8 +12,8 @@
 namespace sm {
 
 /// The columns of summary.csv: frame, file, vertices, triangles, shear_{max,mean,p95}_{before,
-/// after}, dist_out_to_in_{max,rms}, dist_in_to_out_{max,rms}, iterations, seconds, then status
-/// and failure.
+/// after}, dist_out_to_in_{max,rms}, dist_in_to_out_{max,rms}, iterations, seconds, then status,
+/// failure and time (seconds into the animation for glTF input, empty otherwise).
 std::vector<std::string> summary_columns();
 
 /// summary.csv, one row per frame in order. Without `timings`, the seconds column holds 0.

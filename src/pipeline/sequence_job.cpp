@@ -5,15 +5,16 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <chrono>
+#include <exception>
+#include <mutex>
 #include <set>
 #include <sstream>
 
 #include "geometry/bvh.hpp"
 #include "io/atomic_file.hpp"
-#include "io/frame_folder.hpp"
 #include "io/mesh_file.hpp"
-#include "io/obj.hpp"
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
@@ -31,7 +32,7 @@ double seconds_since(Clock::time_point t0) {
 }
 
 std::string frame_label(const SequencePlan& plan, int index) {
-  return "frame " + std::to_string(index) + " (" + plan.frames[index].filename().string() + ")";
+  return plan.source->label(index);
 }
 
 // Why `frame` cannot be massaged with the template's connectivity, or "" if it can.
@@ -61,16 +62,23 @@ std::string connectivity_mismatch(const SequencePlan& plan, int index, const Tri
 // Reads every selected frame (a few at a time) and throws for the first one, in frame order,
 // whose connectivity differs from the template's.
 void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
+  const FrameSource& source = *plan.source;
   std::vector<std::string> problems(plan.selected.size());
   arena.execute([&] {
     tbb::parallel_for(size_t{0}, plan.selected.size(), [&](size_t k) {
       const int index = plan.selected[k];
       if (index == plan.template_frame) return;
-      problems[k] = connectivity_mismatch(plan, index, read_obj(plan.frames[index]).mesh);
+      problems[k] =
+          connectivity_mismatch(plan, index, source.decode(index, source.fetch(index)).mesh);
     });
   });
   for (const std::string& problem : problems)
     if (!problem.empty()) throw InputError(problem);
+}
+
+// distortion/<frame name>.csv
+fs::path distortion_csv_name(const SequencePlan& plan, int index) {
+  return fs::path(plan.source->name(index)).replace_extension(".csv");
 }
 
 // Refuses an output file that is one of the inputs.
@@ -82,17 +90,16 @@ void check_outputs(const SequencePlan& plan) {
     const fs::path resolved = fs::weakly_canonical(p, ec);
     return (ec ? fs::absolute(p) : resolved).lexically_normal();
   };
-  for (int index : plan.selected) inputs.insert(canonical(plan.frames[index]));
-  if (plan.template_frame >= 0) inputs.insert(canonical(plan.frames[plan.template_frame]));
+  std::vector<int> read = plan.selected;
+  if (plan.template_frame >= 0) read.push_back(plan.template_frame);
+  for (const fs::path& file : plan.source->files(read)) inputs.insert(canonical(file));
   if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
-  std::vector<fs::path> outputs = {c.output.dir / "summary.csv", c.output.dir / "report.json"};
-  for (int index : plan.selected) {
-    outputs.push_back(c.output.dir / "frames" / plan.frames[index].filename());
-    if (c.output.per_triangle_csv) {
-      fs::path csv = plan.frames[index].filename();
-      outputs.push_back(c.output.dir / "distortion" / csv.replace_extension(".csv"));
-    }
-  }
+  std::vector<fs::path> outputs = plan.sink->files(plan.selected);
+  outputs.push_back(c.output.dir / "summary.csv");
+  outputs.push_back(c.output.dir / "report.json");
+  if (c.output.per_triangle_csv)
+    for (int index : plan.selected)
+      outputs.push_back(c.output.dir / "distortion" / distortion_csv_name(plan, index));
   for (const fs::path& out : outputs)
     if (inputs.count(canonical(out)))
       throw ConfigError("output.dir: writing " + out.string() +
@@ -115,33 +122,34 @@ std::vector<int> select_frames(const FrameRange& range, int count) {
 // One frame in flight through the pipeline.
 struct Work {
   int index = 0;
-  std::string bytes;  // the input file as read
-  bool unchanged = false;
-  std::string obj;  // the corrected frame (unless unchanged)
-  std::string csv;  // per-triangle distortion (if asked)
+  std::string bytes;  // what the source fetched (the input file as read, if any)
+  std::string out;    // the output frame, encoded by the sink
+  std::string csv;    // per-triangle distortion (if asked)
   FrameSummary summary;
 };
 
 void process_frame(const SequencePlan& plan, Work& w) {
   const auto t0 = Clock::now();
   const JobConfig& c = plan.config;
-  const fs::path& path = plan.frames[w.index];
-  const ObjFile file = parse_obj(w.bytes, path.string());
+  const SourceFrame file = plan.source->decode(w.index, std::move(w.bytes));
   if (std::string problem = connectivity_mismatch(plan, w.index, file.mesh); !problem.empty())
     throw InputError(problem);
 
   FrameSummary& s = w.summary;
   s.frame = w.index;
-  s.file = path.filename().string();
+  s.file = plan.source->name(w.index);
+  s.time = plan.source->time(w.index);
+  s.warnings = file.warnings;
   s.vertices = file.mesh.num_vertices();
   s.triangles = file.mesh.num_triangles();
   const Triangles& F = plan.templ.F;
   const Eigen::VectorXd before = shear_distortion(plan.templ.V, file.mesh.V, F);
 
   Positions V = file.mesh.V;
+  bool unchanged = false;
   if (w.index == plan.template_frame && !c.templ.optimize) {
     s.status = FrameStatus::Template;
-    w.unchanged = true;
+    unchanged = true;
   } else {
     const std::string name = frame_label(plan, w.index);
     const Reference reference(file.mesh, c.massage.samples, name.c_str(),
@@ -151,12 +159,11 @@ void process_frame(const SequencePlan& plan, Work& w) {
     if (!result.ok) {
       s.status = FrameStatus::Failed;
       s.failure = result.failure;
-      w.unchanged = true;
+      unchanged = true;
     } else {
       s.status = FrameStatus::Optimized;
       s.folded_triangles = result.folded_triangles;
       V = result.V;
-      w.obj = format_obj(file, V);
       const TriMesh output{V, F};
       const Topology& topology = plan.massager->topology();
       s.out_to_in =
@@ -167,16 +174,16 @@ void process_frame(const SequencePlan& plan, Work& w) {
       s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
     }
   }
-  const Eigen::VectorXd after = w.unchanged ? before : shear_distortion(plan.templ.V, V, F);
+  w.out = plan.sink->encode(file, V, unchanged);
+  const Eigen::VectorXd after = unchanged ? before : shear_distortion(plan.templ.V, V, F);
   s.shear_before = summarize_distortion(before);
   s.shear_after = summarize_distortion(after);
   if (c.output.per_triangle_csv) w.csv = format_distortion_csv(before, after);
 
-  if (plan.synthetic) {
-    const Positions clean = synthetic_frame(*plan.synthetic, w.index).clean;
+  if (const std::optional<Positions> clean = plan.source->ground_truth(w.index)) {
     const double unit = mean_edge_length(plan.templ);
-    const Eigen::VectorXd e_in = (file.mesh.V - clean).rowwise().norm() / unit;
-    const Eigen::VectorXd e_out = (V - clean).rowwise().norm() / unit;
+    const Eigen::VectorXd e_in = (file.mesh.V - *clean).rowwise().norm() / unit;
+    const Eigen::VectorXd e_out = (V - *clean).rowwise().norm() / unit;
     s.ground_truth = GroundTruthError{e_in.mean(), e_in.maxCoeff(), e_out.mean(), e_out.maxCoeff()};
   }
   s.seconds = seconds_since(t0);
@@ -203,17 +210,9 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
   plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
   plan.frames_in_flight = c.frames_in_flight > 0 ? c.frames_in_flight : 2 * plan.threads;
 
-  if (c.input.synthetic) {
-    plan.synthetic = make_synthetic_sequence(*c.input.synthetic);
-    plan.input_dir = c.output.dir / "input";
-    plan.ground_truth_dir = c.output.dir / "ground_truth";
-    for (int t = 0; t < plan.synthetic->config.frames; ++t)
-      plan.frames.push_back(plan.input_dir / synthetic_frame_name(*plan.synthetic, t));
-  } else {
-    plan.input_dir = c.input.frames;
-    plan.frames = list_frames(plan.input_dir, ".obj");
-  }
-  const int count = static_cast<int>(plan.frames.size());
+  plan.source = make_frame_source(c);
+  plan.sink = make_frame_sink(c, plan.source);
+  const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
 
   if (c.templ.mesh.empty()) {
@@ -223,11 +222,7 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
                         " frames, 0 to " + std::to_string(count - 1) + ")");
     plan.template_frame = c.templ.frame;
     plan.template_source = frame_label(plan, plan.template_frame);
-    if (plan.synthetic)
-      plan.templ =
-          TriMesh{synthetic_frame(*plan.synthetic, plan.template_frame).drifted, plan.synthetic->F};
-    else
-      plan.templ = read_obj(plan.frames[plan.template_frame]).mesh;
+    plan.templ = plan.source->template_frame(plan.template_frame);
   } else {
     plan.template_source = c.templ.mesh.filename().string();
     plan.templ = read_mesh(c.templ.mesh);
@@ -245,7 +240,7 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
     plan.warnings.push_back("input.range.stop " + std::to_string(*c.input.range.stop) +
                             " is past the last frame; the sequence has " + std::to_string(count));
 
-  if (!plan.synthetic) {
+  if (plan.source->needs_check()) {
     tbb::task_arena arena(plan.threads);
     check_frames(plan, arena);
   }
@@ -256,20 +251,11 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
 std::string describe_plan(const SequencePlan& plan) {
   const JobConfig& c = plan.config;
   std::ostringstream s;
-  const int count = static_cast<int>(plan.frames.size());
   s << "job: sequence\n";
-  if (plan.synthetic) {
-    const SyntheticConfig& g = plan.synthetic->config;
-    s << "input: synthetic bending tube, " << g.frames << " frames of " << plan.templ.num_vertices()
-      << " vertices, generated into " << plan.input_dir.string() << " (ground truth in "
-      << plan.ground_truth_dir.string() << ")\n";
-  } else {
-    s << "input: " << count << " OBJ frames in " << plan.input_dir.string() << "\n";
-  }
+  s << "input: " << plan.source->describe() << "\n";
   s << "frames: " << plan.selected.size() << " selected (" << format_frame_range(c.input.range)
-    << "): " << plan.frames[plan.selected.front()].filename().string();
-  if (plan.selected.size() > 1)
-    s << " ... " << plan.frames[plan.selected.back()].filename().string();
+    << "): " << plan.source->name(plan.selected.front());
+  if (plan.selected.size() > 1) s << " ... " << plan.source->name(plan.selected.back());
   s << "\n";
   s << "template: " << plan.template_source << ", " << plan.templ.num_vertices() << " vertices, "
     << plan.templ.num_triangles() << " triangles";
@@ -283,7 +269,7 @@ std::string describe_plan(const SequencePlan& plan) {
     << m["solver"].get<std::string>() << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
-  s << "  frames/<name>.obj (" << plan.selected.size() << " files)\n";
+  s << plan.sink->describe(plan.selected);
   if (c.output.per_triangle_csv)
     s << "  distortion/<name>.csv (" << plan.selected.size() << " files)\n";
   s << "  summary.csv, report.json\n";
@@ -297,13 +283,36 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const fs::path& out = c.output.dir;
   SequenceResult result;
   result.warnings = plan.warnings;
-  if (plan.synthetic)
-    write_synthetic_sequence(*plan.synthetic, plan.input_dir, plan.ground_truth_dir);
+  plan.source->prepare();
   for (const fs::path& dir : {out, out / "frames", out / "distortion"})
     remove_stale_temporaries(dir);
+  const std::unique_ptr<FrameWriter> writer = plan.sink->start();
 
   const size_t total = plan.selected.size();
   size_t next = 0;
+  // The first exception of a stage stops the input and is rethrown once the frames in flight have
+  // drained, unwritten: thrown through parallel_pipeline, it would leak them (oneTBB does not
+  // destroy the tokens of a cancelled pipeline).
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  std::atomic<bool> failed{false};
+  const auto record_error = [&] {
+    const std::lock_guard<std::mutex> lock(error_mutex);
+    if (!error) error = std::current_exception();
+    failed = true;
+  };
+  // A stage that runs only while nothing failed and records its exception (what the last stage
+  // returns is dropped).
+  const auto guarded = [&](auto stage) {
+    return [&, stage](std::shared_ptr<Work> w) {
+      if (!failed) try {
+          w = stage(std::move(w));
+        } catch (...) {
+          record_error();
+        }
+      return w;
+    };
+  };
   tbb::task_arena arena(plan.threads);
   arena.execute([&] {
     tbb::parallel_pipeline(
@@ -312,30 +321,32 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
             tbb::filter_mode::serial_in_order,
             [&](tbb::flow_control& fc) -> std::shared_ptr<Work> {
               if (next < total && hooks.cancel && hooks.cancel->load()) result.interrupted = true;
-              if (next >= total || result.interrupted) {
+              if (next >= total || result.interrupted || failed) {
                 fc.stop();
                 return nullptr;
               }
               auto w = std::make_shared<Work>();
               w->index = plan.selected[next++];
-              w->bytes = read_file(plan.frames[w->index]);
-              return w;
+              return guarded([&](std::shared_ptr<Work> w) {
+                w->bytes = plan.source->fetch(w->index);
+                return w;
+              })(std::move(w));
             }) &
             tbb::make_filter<std::shared_ptr<Work>, std::shared_ptr<Work>>(
-                tbb::filter_mode::parallel,
-                [&](std::shared_ptr<Work> w) {
+                tbb::filter_mode::parallel, guarded([&](std::shared_ptr<Work> w) {
                   process_frame(plan, *w);
                   return w;
-                }) &
+                })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
-                tbb::filter_mode::serial_in_order, [&](std::shared_ptr<Work> w) {
-                  const fs::path name = plan.frames[w->index].filename();
-                  write_file_atomic(out / "frames" / name, w->unchanged ? w->bytes : w->obj);
+                tbb::filter_mode::serial_in_order, guarded([&](std::shared_ptr<Work> w) {
+                  writer->write(w->index, w->out);
                   if (c.output.per_triangle_csv)
-                    write_file_atomic(out / "distortion" / fs::path(name).replace_extension(".csv"),
+                    write_file_atomic(out / "distortion" / distortion_csv_name(plan, w->index),
                                       w->csv);
                   const FrameSummary& s = w->summary;
                   const std::string who = frame_label(plan, w->index);
+                  for (const std::string& warning : s.warnings)
+                    result.warnings.push_back(who + ": " + warning);
                   if (s.status == FrameStatus::Failed) {
                     ++result.failed;
                     result.warnings.push_back(who + " failed, written unchanged: " + s.failure);
@@ -347,8 +358,11 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                   if (hooks.progress)
                     hooks.progress(result.frames.back(), static_cast<int>(result.frames.size()),
                                    static_cast<int>(total), seconds_since(t0));
-                }));
+                  return w;
+                })));
   });
+  if (error) std::rethrow_exception(error);
+  for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
   result.seconds = seconds_since(t0);
   write_file_atomic(out / "summary.csv", format_summary_csv(result.frames, c.output.timings));
   write_file_atomic(out / "report.json", make_report(plan, result).dump(2) + "\n");

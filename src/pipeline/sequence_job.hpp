@@ -1,7 +1,8 @@
 #pragma once
 /// The sequence job (paper §3.1): every frame of a mesh sequence is massaged towards the triangle
 /// shapes of a template frame while it stays on its own surface, streamed through a bounded TBB
-/// pipeline (read in order → optimize and measure in parallel → write in order).
+/// pipeline (read in order → decode, optimize, measure and encode in parallel → write in order)
+/// from a FrameSource (OBJ folder, synthetic, glTF) to a FrameSink (OBJ frames, GLB).
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -14,7 +15,8 @@
 #include "geometry/shear.hpp"
 #include "io/config.hpp"
 #include "massage/massage.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/frame_sink.hpp"
+#include "pipeline/frame_source.hpp"
 
 namespace sm {
 
@@ -34,8 +36,9 @@ struct GroundTruthError {
 
 /// One row of summary.csv.
 struct FrameSummary {
-  int frame = 0;     ///< index in the natural order of the input frames
-  std::string file;  ///< input file name
+  int frame = 0;               ///< index in the natural order of the input frames
+  std::string file;            ///< the frame's file name (FrameSource::name)
+  std::optional<double> time;  ///< seconds into the animation (glTF input)
   int vertices = 0;
   int triangles = 0;
   DistortionSummary shear_before;  ///< eq. 8 against the original template, input frame
@@ -48,22 +51,21 @@ struct FrameSummary {
   std::string failure;       ///< why the frame failed (status Failed)
   int folded_triangles = 0;  ///< triangles of the output folded over the input surface
   std::optional<GroundTruthError> ground_truth;  ///< synthetic input only
+  std::vector<std::string> warnings;             ///< from reading the frame (e.g. glTF welding)
 };
 
 /// Everything a run needs, checked: built by plan_sequence_job without writing anything.
 struct SequencePlan {
   JobConfig config;
-  std::filesystem::path input_dir;             ///< where the frames are read from
-  std::vector<std::filesystem::path> frames;   ///< every input frame, natural order
-  std::vector<int> selected;                   ///< indices of the frames to process, in order
-  std::optional<SyntheticSequence> synthetic;  ///< generated into input_dir when run
-  std::filesystem::path ground_truth_dir;      ///< synthetic only: the clean frames
-  int template_frame = -1;                     ///< index of the template frame, -1 for a mesh
-  std::string template_source;                 ///< e.g. "frame 0 (frame_0000.obj)"
-  TriMesh templ;                               ///< the original template: weights and shear
-  std::shared_ptr<const Massager> massager;    ///< built once from the template
-  int threads = 1;                             ///< resolved worker threads
-  int frames_in_flight = 2;                    ///< resolved pipeline tokens
+  std::shared_ptr<const FrameSource> source;  ///< every input frame, in order
+  std::shared_ptr<const FrameSink> sink;      ///< where the corrected frames go
+  std::vector<int> selected;                  ///< indices of the frames to process, in order
+  int template_frame = -1;                    ///< index of the template frame, -1 for a mesh
+  std::string template_source;                ///< e.g. "frame 0 (frame_0000.obj)"
+  TriMesh templ;                              ///< the original template: weights and shear
+  std::shared_ptr<const Massager> massager;   ///< built once from the template
+  int threads = 1;                            ///< resolved worker threads
+  int frames_in_flight = 2;                   ///< resolved pipeline tokens
   std::vector<std::string> warnings;
 };
 
@@ -85,17 +87,17 @@ struct RunHooks {
   const std::atomic<bool>* cancel = nullptr;
 };
 
-/// Checks the config and every input before anything runs: lists the frames, reads every selected
-/// frame (in parallel, in a bounded way) and compares its vertex count and faces with the
-/// template's, builds the template's Massager, and refuses an output folder that would overwrite
-/// an input. Throws ConfigError, InputError (naming the frame and the counts) or IoError. Writes
-/// nothing.
+/// Checks the config and every input before anything runs: lists the frames (or loads and welds
+/// the glTF), reads every selected frame (in parallel, in a bounded way) and compares its vertex
+/// count and faces with the template's, builds the template's Massager, and refuses an output
+/// folder that would overwrite an input. Throws ConfigError, InputError (naming the frame and the
+/// counts, or the glTF file and element) or IoError. Writes nothing.
 SequencePlan plan_sequence_job(const JobConfig& config);
 
 /// What a run of `plan` would do, several lines of text (for --dry-run).
 std::string describe_plan(const SequencePlan& plan);
 
-/// Runs the job: writes the synthetic input (if any), then frames/<name>.obj,
+/// Runs the job: writes the synthetic input (if any), then frames/<name>.obj (or sequence.glb),
 /// distortion/<name>.csv (if asked), summary.csv and report.json under config.output.dir, each file
 /// atomically. A frame's numerical failure is recorded in the result, not thrown. Same plan, same
 /// output bytes (apart from timings), whatever the number of threads.

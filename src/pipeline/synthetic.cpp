@@ -9,6 +9,7 @@
 #include "io/csv.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
+#include "pipeline/frame_source.hpp"
 
 namespace sm {
 namespace {
@@ -126,10 +127,7 @@ SyntheticFrame synthetic_frame(const SyntheticSequence& seq, int t) {
 }
 
 std::string synthetic_frame_name(const SyntheticSequence& seq, int t) {
-  std::string digits = std::to_string(t);
-  const size_t width = std::max<size_t>(4, std::to_string(seq.config.frames - 1).size());
-  if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
-  return "frame_" + digits + ".obj";
+  return numbered_frame_name(t, seq.config.frames);
 }
 
 std::string format_synthetic_obj(const SyntheticSequence& seq, const Positions& V,

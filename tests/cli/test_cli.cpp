@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "io/atomic_file.hpp"
+#include "io/test_gltf_models.hpp"
 #include "pipeline/synthetic.hpp"
 #include "pipeline/temp_folder.hpp"
 
@@ -288,6 +289,51 @@ TEST_CASE("a synthetic input runs without outside data and keeps the ground trut
   CHECK(fs::exists(dir / "demo/input/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/ground_truth/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/frames/frame_0003.obj"));
+}
+
+TEST_CASE("a glTF animation runs from the command line to sequence.glb") {
+  test::TempFolder dir("cli_gltf");
+  fs::create_directories(dir / "takes");
+  test::skinned_strip().save(dir / "takes/strip.glb", true);
+  write_text(dir / "job.json", R"({"job": "sequence",
+    "input": {"gltf": "takes/strip.glb", "mesh": "strip", "animation": 0, "fps": 10},
+    "output": {"dir": "out", "format": "gltf", "timings": false}, "massage": {"iterations": 5}})");
+  Run r = seqmassage(dir.path(), "--dry-run job.json");
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Catch::Contains("12 glTF vertices welded to 10 (2 split copies merged)"));
+  CHECK_THAT(r.out,
+             Catch::Contains("  sequence.glb (11 frames, one morph target each, over 1 mesh"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+
+  r = seqmassage(dir.path(), "job.json");
+  REQUIRE(r.code == 0);
+  CHECK(r.out == "results: out/ (sequence.glb, summary.csv, report.json)\n");
+  CHECK_THAT(r.err, Catch::Contains("frame 11/11 frame_0010.obj: optimized"));
+  test::require_valid_gltf(dir / "out/sequence.glb");
+  const auto summary = read_csv(dir / "out/summary.csv");
+  REQUIRE(summary.size() == 12);
+  CHECK(summary[0].back() == "time");
+  CHECK(summary[11][1] == "frame_0010.obj");
+  CHECK(summary[11][2] == "10");  // welded vertices
+  CHECK(std::stod(summary[11].back()) == Approx(1.0));
+
+  // Bad glTF: exit code 3, the file and the element named, nothing written.
+  fs::remove_all(dir / "out");
+  const std::string bytes = read_file(dir / "takes/strip.glb");
+  write_file_atomic(dir / "takes/strip.glb", bytes.substr(0, 40));
+  r = seqmassage(dir.path(), "job.json");
+  CHECK(r.code == 3);
+  CHECK_THAT(r.err, Catch::StartsWith("seqmassage: input error: '") &&
+                        Catch::Contains("strip.glb") && Catch::Contains("GLB"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+
+  // A GLB output needs a glTF input.
+  write_text(dir / "obj.json", R"({"job": "sequence", "input": {"frames": "takes"},
+    "output": {"dir": "out", "format": "gltf"}})");
+  r = seqmassage(dir.path(), "obj.json");
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err,
+             Catch::StartsWith("seqmassage: obj.json: output.format: \"gltf\" needs a glTF input"));
 }
 
 TEST_CASE("Ctrl-C stops the run with code 130, the frames done are recorded") {

@@ -168,8 +168,8 @@ TEST_CASE("wrong types and out-of-range values name the key and the value") {
   CHECK(config_error(with("threads", "-1")) == "threads: expected an integer in [0, 4096], got -1");
   CHECK(config_error(with("output", R"({"dir": ""})")) ==
         "output.dir: expected a path (a non-empty string), got \"\"");
-  CHECK(config_error(with("output", R"({"dir": "o", "format": "gltf"})")) ==
-        "output.format: expected \"obj\", got \"gltf\"");
+  CHECK(config_error(with("output", R"({"dir": "o", "format": "glft"})")) ==
+        "output.format: expected \"obj\" or \"gltf\", got \"glft\" (did you mean \"gltf\"?)");
   CHECK(config_error(with("job", R"("remesh")")) == "job: expected \"sequence\", got \"remesh\"");
   CHECK(config_error("[1, 2]") == "config: expected an object, got an array");
 }
@@ -178,14 +178,17 @@ TEST_CASE("missing and conflicting keys") {
   CHECK(config_error(R"({"input": {"frames": "f"}, "output": {"dir": "o"}})") ==
         "job: missing (the kind of job: \"sequence\")");
   CHECK(config_error(R"({"job": "sequence", "output": {"dir": "o"}})") ==
-        "input: missing (\"frames\": a folder of OBJ frames, or \"synthetic\")");
+        "input: missing (\"frames\": a folder of OBJ frames, \"synthetic\" or \"gltf\": a glTF "
+        "animation)");
   CHECK(config_error(R"({"job": "sequence", "input": {"frames": "f"}, "output": {}})") ==
         "output.dir: missing (the folder the results are written to)");
   CHECK(config_error(with("input", R"({})")) ==
-        "input: missing \"frames\" (a folder of OBJ frames) or \"synthetic\" (a generated "
-        "sequence)");
+        "input: missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated "
+        "sequence) or \"gltf\" (a glTF animation)");
   CHECK(config_error(with("input", R"({"frames": "f", "synthetic": {}})")) ==
-        "input: give \"frames\" or \"synthetic\", not both");
+        "input: give only one of \"frames\", \"synthetic\" and \"gltf\"");
+  CHECK(config_error(with("input", R"({"frames": "f", "gltf": "take.glb"})")) ==
+        "input: give only one of \"frames\", \"synthetic\" and \"gltf\"");
   CHECK(config_error(with("template", R"({"frame": 1, "mesh": "rest.obj"})")) ==
         "template: give \"frame\" or \"mesh\", not both");
   CHECK(config_error(with("template", R"({"mesh": "rest.obj", "optimize": true})"))
@@ -199,6 +202,73 @@ TEST_CASE("missing and conflicting keys") {
         "input.synthetic.drift: expected a number in [0, 2], got 3");
   CHECK(config_error(with("input", R"({"synthetic": {"shape": "sphere"}})")) ==
         "input.synthetic.shape: expected \"bending_tube\", got \"sphere\"");
+}
+
+TEST_CASE("glTF input keys: file, mesh and animation by name or index, fps; GLB output") {
+  JobConfig c = parse(R"({"job": "sequence", "input": {"gltf": "takes/walk.glb"},
+                          "output": {"dir": "out", "format": "gltf"}})");
+  REQUIRE(c.input.gltf);
+  CHECK(c.input.gltf->file == fs::path("/data/project/configs/takes/walk.glb"));
+  CHECK(c.input.gltf->mesh.empty());
+  CHECK_FALSE(c.input.gltf->mesh_index);
+  CHECK(c.input.gltf->animation.empty());
+  CHECK_FALSE(c.input.gltf->animation_index);
+  CHECK_FALSE(c.input.gltf->fps);
+  CHECK(c.input.frames.empty());
+  CHECK(c.output.format == OutputFormat::Gltf);
+  CHECK(c.output.gltf.frames_per_mesh == GltfWriteOptions{}.frames_per_mesh);
+  CHECK(c.output.gltf.normals);
+
+  c = parse(R"({"job": "sequence",
+                "input": {"gltf": "/abs/a.gltf", "mesh": "body", "animation": 2, "fps": 24},
+                "output": {"dir": "out", "format": "gltf",
+                           "gltf": {"frames_per_mesh": 64, "normals": false}}})");
+  CHECK(c.input.gltf->file == fs::path("/abs/a.gltf"));
+  CHECK(c.input.gltf->mesh == "body");
+  CHECK_FALSE(c.input.gltf->mesh_index);
+  CHECK(c.input.gltf->animation.empty());
+  CHECK(c.input.gltf->animation_index == 2);
+  CHECK(c.input.gltf->fps == 24.0);
+  CHECK(c.output.gltf.frames_per_mesh == 64);
+  CHECK_FALSE(c.output.gltf.normals);
+  // Round trip: the index stays an index, the name a name.
+  const json resolved = to_json(c);
+  CHECK(resolved["input"]["mesh"] == "body");
+  CHECK(resolved["input"]["animation"] == 2);
+  CHECK(resolved["output"]["gltf"]["frames_per_mesh"] == 64);
+  CHECK(to_json(parse_config(resolved, "/elsewhere")) == resolved);
+  const json defaults = to_json(parse(R"({"job": "sequence", "input": {"gltf": "a.glb"},
+                                          "output": {"dir": "o"}})"));
+  CHECK(defaults["input"]["mesh"].is_null());
+  CHECK(defaults["input"]["fps"].is_null());
+  CHECK_FALSE(defaults["output"].contains("gltf"));
+  CHECK(to_json(parse_config(defaults, "/elsewhere")) == defaults);
+
+  const std::string glb =
+      R"({"job": "sequence", "output": {"dir": "o"}, "input": {"gltf": "a.glb", )";
+  CHECK(config_error(glb + R"("fps": 0}})") == "input.fps: expected a number in (0, 1e+06], got 0");
+  CHECK(config_error(glb + R"("fps": "30"}})") ==
+        "input.fps: expected a number in (0, 1e+06], got \"30\"");
+  CHECK(config_error(glb + R"("mesh": -1}})") ==
+        "input.mesh: expected a name (a non-empty string) or an index (an integer >= 0), got -1");
+  CHECK(config_error(glb + R"("animation": ""}})") ==
+        "input.animation: expected a name (a non-empty string) or an index (an integer >= 0), "
+        "got \"\"");
+  CHECK(config_error(glb + R"("animaton": 1}})") ==
+        "input.animaton: unknown key (did you mean \"animation\"?)");
+  CHECK(config_error(with("input", R"({"frames": "f", "fps": 30})")) ==
+        "input.fps: only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
+  CHECK(config_error(with("input", R"({"frames": "f", "mesh": 0})")) ==
+        "input.mesh: only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
+  CHECK(config_error(with("output", R"({"dir": "o", "format": "gltf"})")) ==
+        "output.format: \"gltf\" needs a glTF input (input.gltf), whose mesh, materials and "
+        "textures the output keeps; use \"obj\" for OBJ frames");
+  const std::string with_glb = R"({"job": "sequence", "input": {"gltf": "a.glb"}, )";
+  CHECK(config_error(with_glb + R"("output": {"dir": "o", "gltf": {"normals": false}}})") ==
+        "output.gltf: only applies to output.format \"gltf\"");
+  CHECK(config_error(with_glb + R"("output": {"dir": "o", "format": "gltf",
+                                              "gltf": {"frames_per_mesh": 0}}})") ==
+        "output.gltf.frames_per_mesh: expected an integer in [1, 100000], got 0");
 }
 
 TEST_CASE("strict JSON: comments, duplicate keys and syntax errors are refused") {
@@ -271,4 +341,26 @@ TEST_CASE("edit distance") {
   CHECK(edit_distance("kitten", "sitting") == 3);
   CHECK(edit_distance("same", "same") == 0);
   CHECK(edit_distance("strat", "start") == 1);  // a transposition counts once
+}
+
+TEST_CASE("every example config in configs/ parses") {
+  const fs::path configs = fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "configs";
+  int parsed = 0;
+  for (const auto& entry : fs::directory_iterator(configs)) {
+    if (entry.path().extension() != ".json") continue;
+    INFO(entry.path().string());
+    const AnyJobConfig any = load_any_config(entry.path());
+    const fs::path& dir = std::holds_alternative<JobConfig>(any)
+                              ? std::get<JobConfig>(any).output.dir
+                              : std::get<MeshJobConfig>(any).output.dir;
+    CHECK(dir.is_absolute());
+    ++parsed;
+  }
+  CHECK(parsed >= 7);  // demo, the crane folder, CesiumMan glTF, the single-mesh jobs
+  const JobConfig man = load_config(configs / "gltf_cesiumman.json");
+  REQUIRE(man.input.gltf);
+  CHECK(man.input.gltf->file ==
+        (configs / "../../shared/data/gltf/skinned/CesiumMan/glTF-Binary/CesiumMan.glb")
+            .lexically_normal());
+  CHECK(man.output.format == OutputFormat::Gltf);
 }

@@ -345,6 +345,36 @@ ScratchDir::~ScratchDir() {
   fs::remove_all(path, ec);
 }
 
+fs::path shared_gltf_dir() {
+  return fs::path(SEQMASSAGE_SHARED_DATA_DIR) / "gltf";
+}
+
+bool have_shared_gltf() {
+  if (fs::is_directory(shared_gltf_dir())) return true;
+  WARN("skipped: the shared glTF models are not at " << shared_gltf_dir().string());
+  return false;
+}
+
+// Measured with this reader; vertex counts agree with data/README.md §2 ("verts / uniq pos"),
+// frame counts with its keyframe counts. Only the two minimal models are open: SimpleMorph is
+// one triangle and SimpleSkin a strip of 8 triangles.
+const SharedGltfModel kSharedGltfModels[10] = {
+    {"skinned/CesiumMan/glTF-Binary/CesiumMan.glb", 3273, 2338, 4672, 48, 0},
+    {"skinned/CesiumMan/glTF/CesiumMan.gltf", 3273, 2338, 4672, 48, 0},
+    {"skinned/RiggedSimple/glTF-Binary/RiggedSimple.glb", 160, 96, 188, 50, 0},
+    {"skinned/RiggedFigure/glTF-Binary/RiggedFigure.glb", 370, 130, 256, 2, 0},
+    {"skinned/Fox/glTF-Binary/Fox.glb", 1728, 290, 576, 83, 0},
+    {"skinned/SimpleSkin/glTF/SimpleSkin.gltf", 10, 10, 8, 12, 1},
+    {"morph/AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb", 24, 8, 12, 127, 0},
+    {"morph/AnimatedMorphSphere/glTF-Binary/AnimatedMorphSphere.glb", 1876, 482, 960, 217, 0},
+    {"morph/MorphStressTest/glTF-Binary/MorphStressTest.glb", 1528, 1224, 2412, 281, 0},
+    {"morph/SimpleMorph/glTF/SimpleMorph.gltf", 3, 3, 1, 5, 1},
+};
+
+const char* const kStaticGltfModels[3] = {
+    "static/Box/glTF-Binary/Box.glb", "static/BoxTextured/glTF-Binary/BoxTextured.glb",
+    "morph/MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb"};
+
 std::optional<int> validate_gltf(const fs::path& file, std::string& report) {
   if (std::system("command -v node >/dev/null 2>&1") != 0) {
     report = "node is not on PATH";

@@ -69,6 +69,29 @@ struct ScratchDir {
   ~ScratchDir();
 };
 
+/// ../shared/data/gltf: the Khronos sample models of data/README.md §2.
+std::filesystem::path shared_gltf_dir();
+
+/// Whether shared_gltf_dir() is present; if not, WARNs that the test is skipped.
+bool have_shared_gltf();
+
+/// An animated model of shared_gltf_dir() with the facts the tests check (data/README.md §2).
+struct SharedGltfModel {
+  const char* file;  ///< under shared_gltf_dir()
+  int gltf_vertices;
+  int welded_vertices;  ///< rest.num_vertices()
+  int triangles;
+  int frames;          ///< default sampling: the keyframe times of the first animation
+  int boundary_loops;  ///< of the welded mesh
+};
+
+/// Every animated model of the shared data (CesiumMan twice: GLB and .gltf + .bin + .jpg).
+extern const SharedGltfModel kSharedGltfModels[10];
+
+/// The shared models without animation (under shared_gltf_dir()): Box, BoxTextured, and
+/// MorphPrimitivesTest (morph targets, static weights).
+extern const char* const kStaticGltfModels[3];
+
 /// Runs tools/validate_gltf.js on `file`. Returns the number of errors (with the report in
 /// `report`), or nothing when node or the gltf-validator package is missing (`report` says why).
 std::optional<int> validate_gltf(const std::filesystem::path& file, std::string& report);

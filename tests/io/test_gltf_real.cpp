@@ -14,48 +14,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kGltfDir = fs::path(SEQMASSAGE_SHARED_DATA_DIR) / "gltf";
-
-struct RealModel {
-  const char* file;  ///< under kGltfDir
-  int gltf_vertices;
-  int welded_vertices;  ///< rest.num_vertices()
-  int triangles;
-  int frames;          ///< default sampling: the keyframe times of the first animation
-  int boundary_loops;  ///< of the welded mesh
-};
-
-// Measured with this reader; vertex counts agree with data/README.md §2 ("verts / uniq pos"),
-// frame counts with its keyframe counts. Only the two minimal models are open: SimpleMorph is
-// one triangle and SimpleSkin a strip of 8 triangles.
-const RealModel kModels[] = {
-    {"skinned/CesiumMan/glTF-Binary/CesiumMan.glb", 3273, 2338, 4672, 48, 0},
-    {"skinned/CesiumMan/glTF/CesiumMan.gltf", 3273, 2338, 4672, 48, 0},
-    {"skinned/RiggedSimple/glTF-Binary/RiggedSimple.glb", 160, 96, 188, 50, 0},
-    {"skinned/RiggedFigure/glTF-Binary/RiggedFigure.glb", 370, 130, 256, 2, 0},
-    {"skinned/Fox/glTF-Binary/Fox.glb", 1728, 290, 576, 83, 0},
-    {"skinned/SimpleSkin/glTF/SimpleSkin.gltf", 10, 10, 8, 12, 1},
-    {"morph/AnimatedMorphCube/glTF-Binary/AnimatedMorphCube.glb", 24, 8, 12, 127, 0},
-    {"morph/AnimatedMorphSphere/glTF-Binary/AnimatedMorphSphere.glb", 1876, 482, 960, 217, 0},
-    {"morph/MorphStressTest/glTF-Binary/MorphStressTest.glb", 1528, 1224, 2412, 281, 0},
-    {"morph/SimpleMorph/glTF/SimpleMorph.gltf", 3, 3, 1, 5, 1},
-};
-
-const char* const kStaticModels[] = {
-    "static/Box/glTF-Binary/Box.glb", "static/BoxTextured/glTF-Binary/BoxTextured.glb",
-    "morph/MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb",  // morph targets, no animation
-};
-
-bool have_data() {
-  if (fs::is_directory(kGltfDir)) return true;
-  WARN("skipped: the shared glTF models are not at " << kGltfDir.string());
-  return false;
-}
+const fs::path kGltfDir = test::shared_gltf_dir();
 
 TEST_CASE("real glTF models load, weld, write valid GLB and read back", "[gltf][data]") {
-  if (!have_data()) return;
+  if (!test::have_shared_gltf()) return;
   test::ScratchDir dir("gltf-real");
-  for (const RealModel& model : kModels) {
+  for (const test::SharedGltfModel& model : test::kSharedGltfModels) {
     INFO(model.file);
     const GltfSequence s = load_gltf_sequence({kGltfDir / model.file, "", "", std::nullopt});
     CHECK(s.gltf_vertices == model.gltf_vertices);
@@ -98,7 +62,7 @@ TEST_CASE("real glTF models load, weld, write valid GLB and read back", "[gltf][
 }
 
 TEST_CASE("real glTF models: animation choice and fps sampling", "[gltf][data]") {
-  if (!have_data()) return;
+  if (!test::have_shared_gltf()) return;
   const fs::path fox = kGltfDir / "skinned/Fox/glTF-Binary/Fox.glb";
   CHECK(load_gltf_sequence({fox, "", "Walk", std::nullopt}).num_frames() == 18);
   const GltfSequence run = load_gltf_sequence({fox, "fox1", "2", std::nullopt});
@@ -112,8 +76,8 @@ TEST_CASE("real glTF models: animation choice and fps sampling", "[gltf][data]")
 }
 
 TEST_CASE("static glTF models are a clear 'no animation' error", "[gltf][data]") {
-  if (!have_data()) return;
-  for (const char* file : kStaticModels) {
+  if (!test::have_shared_gltf()) return;
+  for (const char* file : test::kStaticGltfModels) {
     INFO(file);
     CHECK_THROWS_AS(load_gltf_sequence({kGltfDir / file, "", "", std::nullopt}), InputError);
     CHECK_THROWS_WITH(load_gltf_sequence({kGltfDir / file, "", "", std::nullopt}),

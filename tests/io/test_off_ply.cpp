@@ -163,6 +163,27 @@ TEST_CASE("ASCII PLY with extra properties, elements and colours", "[ply]") {
   CHECK(bit_equal(parse_ply(kAsciiPly, "quads.ply").V, m.V));  // colours are optional
 }
 
+TEST_CASE("PLY elements without properties are skipped whatever their count", "[ply][errors]") {
+  // Found by fuzzing: 2^31-1 items of nothing used to be iterated one by one (a hang).
+  for (const char* format : {"ascii", "binary_little_endian"}) {
+    std::string data = std::string("ply\nformat ") + format +
+                       " 1.0\nelement nothing 2147483647\nelement vertex 3\nproperty float x\n"
+                       "property float y\nproperty float z\nelement face 1\n"
+                       "property list uchar int vertex_indices\nend_header\n";
+    if (std::strcmp(format, "ascii") == 0) {
+      data += "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    } else {
+      for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(data, v);
+      put(data, uint8_t{3});
+      for (int32_t i : {0, 1, 2}) put(data, i);
+    }
+    INFO(format);
+    const TriMesh m = parse_ply(data, "empty-element.ply");
+    CHECK(m.num_vertices() == 3);
+    CHECK(m.F.row(0) == Eigen::RowVector3i(0, 1, 2));
+  }
+}
+
 TEST_CASE("binary little-endian PLY with float positions and uchar/int lists", "[ply]") {
   std::string data =
       "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"

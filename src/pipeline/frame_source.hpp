@@ -1,0 +1,82 @@
+#pragma once
+/// Where the frames of a sequence job come from: a folder of OBJ files, a generated synthetic
+/// sequence, or a glTF animation sampled to frames. The pipeline reads every source alike: fetch
+/// (in frame order, one at a time: file I/O) then decode (in parallel: parsing, glTF evaluation),
+/// so that only the frames in flight are ever held in memory.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/config.hpp"
+#include "io/gltf_load.hpp"
+#include "io/obj.hpp"
+#include "mesh/mesh.hpp"
+
+namespace sm {
+
+/// One frame as read.
+struct SourceFrame {
+  TriMesh mesh;  ///< positions (n×3) and the triangles the optimizer sees (m×3)
+  /// Everything an OBJ output writes besides the positions (texture coordinates, normals, groups,
+  /// faces); its v statements match mesh.V's rows.
+  std::shared_ptr<const ObjFile> obj;
+  std::string bytes;  ///< the frame's file as read; empty when the frame has no file of its own
+  std::vector<std::string> warnings;  ///< e.g. welded glTF copies that came apart
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+
+  /// Number of frames, all of them (input.range selects among them).
+  virtual int size() const = 0;
+  /// The frame's file name: the OBJ file's, or "frame_0007.obj" for a glTF frame (the name its
+  /// OBJ output gets). summary.csv's `file`; output files are named after it.
+  virtual std::string name(int i) const = 0;
+  /// The frame's time in seconds, for an animation (glTF); nothing otherwise.
+  virtual std::optional<double> time(int /*i*/) const { return std::nullopt; }
+  /// The frame in messages: "frame 7 (frame_0007.obj)", with the time if it has one.
+  std::string label(int i) const;
+  /// One line for the plan, e.g. "15 OBJ frames in captures/take1".
+  virtual std::string describe() const = 0;
+  /// report.json "input": what was read, with counts (e.g. welded glTF vertices).
+  virtual nlohmann::json report() const = 0;
+  /// The files frames `frames` are read from (outputs must not overwrite them).
+  virtual std::vector<std::filesystem::path> files(const std::vector<int>& frames) const = 0;
+
+  /// Whether planning must read every selected frame to check it against the template (false
+  /// for frames that are consistent by construction).
+  virtual bool needs_check() const { return true; }
+  /// Frame i as a template, read at planning time (before prepare()).
+  virtual TriMesh template_frame(int i) const;
+  /// Called once when a run starts, before the first fetch (e.g. writes generated frames).
+  virtual void prepare() const {}
+  /// The serial, in-order part of reading frame i (file I/O); "" when there is none.
+  virtual std::string fetch(int i) const;
+  /// The parallel part: frame i from what fetch returned. Thread-safe. Throws InputError naming
+  /// the frame and the element at fault.
+  virtual SourceFrame decode(int i, std::string bytes) const = 0;
+
+  /// Where the clean frames of a generated sequence are written, empty if there are none.
+  virtual std::filesystem::path ground_truth_dir() const { return {}; }
+  /// Clean positions of frame i, for a generated sequence.
+  virtual std::optional<Positions> ground_truth(int /*i*/) const { return std::nullopt; }
+
+  /// The glTF sequence the frames are evaluated from (for an output that rebuilds the source
+  /// asset), or null.
+  virtual const GltfSequence* gltf() const { return nullptr; }
+};
+
+/// The source of the config's input ("frames", "synthetic" or "gltf"). A glTF file is loaded,
+/// welded and checked here; other sources list or generate nothing yet. Throws like the loaders:
+/// IoError, InputError naming the file and element, ConfigError for invalid values.
+std::shared_ptr<const FrameSource> make_frame_source(const JobConfig& config);
+
+/// "frame_0007.obj": frame i's name among `count` frames (at least 4 digits).
+std::string numbered_frame_name(int i, int count);
+
+}  // namespace sm
