@@ -157,7 +157,8 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     unchanged = true;
   } else {
     const std::string name = frame_label(plan, w.index);
-    reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology());
+    reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology(),
+                      &plan.massager->template_bvh());
     result = plan.massager->run(file.mesh.V, *reference);
     s.iterations = static_cast<int>(result.iterations.size());
     if (!result.ok) {
@@ -169,8 +170,13 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       s.folded_triangles = result.folded_triangles;
       V = result.V;
       const TriMesh output{V, F};
-      s.out_to_in = one_sided_distance(output, reference->bvh());
-      s.in_to_out = one_sided_distance(file.mesh, TriangleBvh(output));
+      const Topology& topology = plan.massager->topology();
+      s.out_to_in =
+          one_sided_distance(output, reference->bvh(), {}, &reference->planes(), &topology);
+      TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
+      output_bvh.refit(V);
+      const TrianglePlanes output_planes(V, F, &topology);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
     }
   }
   w.out = plan.sink->encode(file, V, unchanged);
