@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
 """Plot the distortion figures of a seqmassage run directory.
 
-    plot_distortion.py RUN_DIR [--out DIR] [--frame NAME_OR_INDEX] [--log]
+    plot_distortion.py RUN_DIR [--out DIR] [--frame NAME_OR_INDEX] [--log] [--formats png,svg]
+                       [--dpi DPI]
 
 Reads RUN_DIR/summary.csv (required), RUN_DIR/distortion/<frame name>.csv (optional, per
-triangle) and RUN_DIR/iterations.csv (optional, per iteration) and writes PNG and SVG files to
-RUN_DIR/plots (or --out):
+triangle; output.per_triangle_csv) and RUN_DIR/iterations.csv (optional, per iteration;
+output.iterations) and writes PNG and SVG files to RUN_DIR/plots (or --out):
 
   shear_per_frame        max and mean shear per frame, before (green) and after (blue)
                          (like Figure 5 of the Mesh Massage paper)
   shear_histogram_<f>    per-triangle shear distribution of one frame, before vs after (Figure 7)
   convergence            distortion and distances against iteration (Figure 8), only when
-                         iterations.csv exists
+                         iterations.csv exists: the --frame frame, else the frames whose shear
+                         was measured after every iteration (output.iterations.shear_frames),
+                         else every logged frame (shear then at the first and last iteration)
 
 Shear is the symmetric maximum shear of eq. 8 (0 for a congruent triangle). Columns are read by
 header name; extra columns are ignored, empty cells are treated as missing (NaN), `inf`/`nan` are
@@ -161,10 +164,14 @@ def finite(values):
 # ---------------------------------------------------------------------------------------------
 # Figures
 
+FORMATS = ("png", "svg")
+DPI = 120
+
+
 def save(fig, out_dir, stem, written):
-    for ext in ("png", "svg"):
+    for ext in FORMATS:
         p = os.path.join(out_dir, "%s.%s" % (stem, ext))
-        fig.savefig(p, dpi=120 if ext == "png" else None)
+        fig.savefig(p, dpi=DPI if ext == "png" else None)
         written.append(p)
 
 
@@ -271,6 +278,24 @@ def plot_histogram(plt, row, path, log, out_dir, written):
     return notes
 
 
+METRIC_LABELS = {
+    "shear_max": "max shear", "shear_mean": "mean shear", "energy": "energy",
+    "max_dist_m_to_n": "output vertices to input surface",
+    "rms_dist_m_to_n": "output vertices to input surface",
+    "max_dist_n_to_m": "input samples to output surface",
+    "rms_dist_n_to_m": "input samples to output surface",
+}
+
+
+def shear_every_iteration(rows):
+    """Whether some row between a frame's first and last iteration has a shear value."""
+    last = {}
+    for r in rows:
+        last[r["frame"]] = max(last.get(r["frame"], -math.inf), r["iteration"])
+    return any(0 < r["iteration"] < last[r["frame"]] and math.isfinite(r.get("shear_max", math.nan))
+               for r in rows)
+
+
 def plot_convergence(plt, path, selector, log, out_dir, written):
     header, rows = read_table(path, ITERATION_REQUIRED, ["iteration"] + ITERATION_METRICS)
     metrics = [m for m in ITERATION_METRICS if m in header]
@@ -281,20 +306,32 @@ def plot_convergence(plt, path, selector, log, out_dir, written):
     for row in rows:
         if math.isnan(row["iteration"]):
             raise InputError("%s: line %d: column 'iteration' is empty" % (path, row["_line"]))
+    note = None
     if selector is not None:
         chosen = [r for r in rows if r["frame"] in selector]
         if chosen:
             rows = chosen
+    elif "shear_max" in metrics and shear_every_iteration(rows):
+        # Figure 8: the frames whose shear was measured after every iteration
+        # (output.iterations.shear_frames), not every logged frame.
+        frames_with_shear = {r["frame"] for r in rows
+                             if 0 < r["iteration"] and math.isfinite(r["shear_max"])}
+        full = {f for f in frames_with_shear
+                if shear_every_iteration([r for r in rows if r["frame"] == f])}
+        rows = [r for r in rows if r["frame"] in full]
     frames = []
     for r in rows:
         if r["frame"] not in frames:
             frames.append(r["frame"])
+    if "shear_max" in metrics and not shear_every_iteration(rows):
+        note = ("shear measured at the first and last iteration only\n"
+                "(output.iterations.shear_frames measures it after every one)")
 
     groups = [("Maximum shear", SHEAR_LABEL, ["shear_max"]),
               ("Mean shear", SHEAR_LABEL, ["shear_mean"]),
               ("Maximum distance", "distance (model units)", ["max_dist_m_to_n", "max_dist_n_to_m"]),
               ("RMS distance", "distance (model units)", ["rms_dist_m_to_n", "rms_dist_n_to_m"]),
-              ("Energy", "energy", ["energy"])]
+              ("Energy (eq. 7, after the solve)", "energy", ["energy"])]
     groups = [(t, y, [m for m in ms if m in metrics]) for t, y, ms in groups]
     groups = [g for g in groups if g[2]]
     ncols = 2 if len(groups) > 1 else 1
@@ -308,7 +345,6 @@ def plot_convergence(plt, path, selector, log, out_dir, written):
         plotted = False
         for fi, frame in enumerate(frames):
             fr = sorted((r for r in rows if r["frame"] == frame), key=lambda r: r["iteration"])
-            its = [r["iteration"] for r in fr]
             if len(frames) == 1:
                 colour = BLUE
             elif len(frames) <= 10:
@@ -316,20 +352,29 @@ def plot_convergence(plt, path, selector, log, out_dir, written):
             else:
                 colour = cmap(0.9 * fi / (len(frames) - 1))
             for mi, m in enumerate(ms):
-                ys = for_axis([r[m] for r in fr], log)
-                plotted = plotted or any(math.isfinite(v) for v in ys)
-                label = m if len(frames) == 1 else ("frame %s" % frame if len(ms) == 1
-                                                     else "frame %s %s" % (frame, m))
-                ax.plot(its, ys, styles[mi % 2], color=colour, marker="o", markersize=2.5,
-                        label=label)
+                points = [(r["iteration"], v) for r, v in zip(fr, for_axis([r[m] for r in fr], log))
+                          if math.isfinite(v)]
+                plotted = plotted or bool(points)
+                what = METRIC_LABELS.get(m, m)
+                label = what if len(frames) == 1 else ("frame %s" % frame if len(ms) == 1
+                                                       else "frame %s, %s" % (frame, what))
+                # shear at the first and last iteration only: points, no line between them
+                ends_only = m.startswith("shear") and not shear_every_iteration(fr)
+                ax.plot([p[0] for p in points], [p[1] for p in points],
+                        linestyle="none" if ends_only else styles[mi % 2], color=colour,
+                        marker="o", markersize=2.5, label=label)
         ax.set_title(title if len(frames) != 1 else "%s, frame %s" % (title, frames[0]))
-        ax.set_xlabel("iteration")
+        ax.set_xlabel("iteration (0 = input frame)")
+        ax.xaxis.set_major_locator(MaxNLocator(integer=True))
         ax.set_ylabel(ylabel)
         if log and plotted:
             ax.set_yscale("log")
         ax.grid(True, alpha=0.3)
         if show_legend or len(ms) > 1 and len(frames) == 1:
             ax.legend(fontsize=7)
+        if note and ms[0].startswith("shear") and k == 0:
+            ax.text(0.5, 0.5, note, transform=ax.transAxes, ha="center", va="center",
+                    fontsize=7, color="0.35")
     for k in range(len(groups), nrows * ncols):
         axes[k // ncols][k % ncols].set_visible(False)
     if not show_legend:
@@ -337,6 +382,7 @@ def plot_convergence(plt, path, selector, log, out_dir, written):
     fig.tight_layout()
     save(fig, out_dir, "convergence", written)
     plt.close(fig)
+    return frames
 
 
 # ---------------------------------------------------------------------------------------------
@@ -351,7 +397,17 @@ def main(argv=None):
                              "default: largest max shear before among frames with a distortion CSV")
     parser.add_argument("--log", action="store_true",
                         help="log-scale y axes (histogram: log-spaced bins, log x)")
+    parser.add_argument("--formats", default="png,svg", metavar="LIST",
+                        help="comma-separated image formats among png and svg (default png,svg)")
+    parser.add_argument("--dpi", type=int, default=120, help="PNG resolution (default 120)")
     args = parser.parse_args(argv)
+    formats = tuple(f.strip().lower() for f in args.formats.split(",") if f.strip())
+    if not formats or any(f not in ("png", "svg") for f in formats):
+        parser.error("--formats: give png, svg or png,svg (got '%s')" % args.formats)
+    if args.dpi < 10:
+        parser.error("--dpi must be >= 10")
+    global FORMATS, DPI
+    FORMATS, DPI = formats, args.dpi
 
     plt = load_matplotlib()
     try:
@@ -378,7 +434,9 @@ def main(argv=None):
             selector = None
             if args.frame is not None and row is not None:
                 selector = {str(row["frame"]), row["name"], row["file"]}
-            plot_convergence(plt, it_path, selector, args.log, out_dir, written)
+            frames = plot_convergence(plt, it_path, selector, args.log, out_dir, written)
+            print("convergence: frame%s %s" % ("" if len(frames) == 1 else "s",
+                                                ", ".join(str(f) for f in frames)))
         else:
             print("%s not found: convergence figure skipped" % it_path)
     except InputError as e:

@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/triangle_grid.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -33,36 +34,66 @@ long divisions(double length, double h, long cap) {
 
 // Which corners (bits 0–2) and edges k → k+1 (bits 3–5) each triangle samples: every vertex and
 // every undirected edge belongs to the first triangle (lowest index, then lowest corner) using it.
-std::vector<uint8_t> ownership(const TriMesh& A, bool edges) {
+// Also the mean edge length, each undirected edge once, summed in the order of (lower vertex,
+// higher vertex) as mean_edge_length does (so the value is the same, bit for bit). Linear: the
+// half-edges are bucketed by their lower vertex, and each (small) bucket sorted.
+struct Sampling {
+  std::vector<uint8_t> owns;
+  double mean_edge = 0.0;
+};
+
+Sampling sampling(const TriMesh& A, bool edges) {
   const int n = A.num_vertices(), m = A.num_triangles();
-  std::vector<uint8_t> owns(m, 0);
+  Sampling out;
+  out.owns.assign(m, 0);
   std::vector<uint8_t> seen(n, 0);
   for (int t = 0; t < m; ++t)
     for (int k = 0; k < 3; ++k)
       if (!seen[A.F(t, k)]) {
         seen[A.F(t, k)] = 1;
-        owns[t] |= uint8_t(1u << k);
+        out.owns[t] |= uint8_t(1u << k);
       }
-  if (!edges) return owns;
-  std::vector<std::pair<uint64_t, int>> keys;
-  keys.reserve(static_cast<size_t>(m) * 3);
+  std::vector<int> start(n + 1, 0);
+  for (int t = 0; t < m; ++t)
+    for (int k = 0; k < 3; ++k) ++start[std::min(A.F(t, k), A.F(t, (k + 1) % 3)) + 1];
+  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::pair<int, int>> entries(3 * static_cast<size_t>(m));  // (higher vertex, 3t+k)
+  std::vector<int> cursor(start.begin(), start.end() - 1);
   for (int t = 0; t < m; ++t)
     for (int k = 0; k < 3; ++k) {
-      uint32_t a = static_cast<uint32_t>(A.F(t, k)), b = static_cast<uint32_t>(A.F(t, (k + 1) % 3));
-      if (a > b) std::swap(a, b);
-      keys.emplace_back((uint64_t(a) << 32) | b, 3 * t + k);
+      const int a = A.F(t, k), b = A.F(t, (k + 1) % 3);
+      entries[cursor[std::min(a, b)]++] = {std::max(a, b), 3 * t + k};
     }
-  std::sort(keys.begin(), keys.end());
-  for (size_t i = 0; i < keys.size(); ++i)
-    if (i == 0 || keys[i].first != keys[i - 1].first)
-      owns[keys[i].second / 3] |= uint8_t(8u << (keys[i].second % 3));
-  return owns;
+  double sum = 0.0;
+  long count = 0;
+  for (int a = 0; a < n; ++a) {
+    const auto first = entries.begin() + start[a], last = entries.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto e = first; e != last; ++e) {
+      if (e != first && (e - 1)->first == e->first) continue;
+      if (edges) out.owns[e->second / 3] |= uint8_t(8u << (e->second % 3));
+      sum += (A.V.row(a) - A.V.row(e->first)).norm();
+      ++count;
+    }
+  }
+  out.mean_edge = count > 0 ? sum / static_cast<double>(count) : 0.0;
+  return out;
+}
+
+// The grid's cell: the mean edge length of B's triangles (each triangle's three edges).
+double cell_size(const Positions& V, const Triangles& F) {
+  double sum = 0.0;
+  for (int t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) sum += (V.row(F(t, k)) - V.row(F(t, (k + 1) % 3))).norm();
+  const double mean = sum / (3.0 * static_cast<double>(F.rows()));
+  return mean > 0.0 && std::isfinite(mean) ? mean : 1.0;
 }
 
 }  // namespace
 
 DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
-                                 const DistanceOptions& options) {
+                                 const DistanceOptions& options, const TrianglePlanes* planes_b,
+                                 const Topology* topology_b) {
   validate_mesh(A, "one_sided_distance (A)");
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
     std::ostringstream msg;
@@ -73,34 +104,42 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   const int m = A.num_triangles();
   if (m == 0) return stats;
   if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");
+  const Positions& VB = B.positions();
+  const Triangles& FB = B.triangles();
+  TrianglePlanes own_planes;
+  if (!planes_b || planes_b->size() != FB.rows()) {
+    own_planes.update(VB, FB, topology_b);
+    planes_b = &own_planes;
+  }
+  const TriangleGrid grid(VB, FB, *planes_b, cell_size(VB, FB), topology_b);
 
-  const double h = options.spacing * mean_edge_length(A);
-  const std::vector<uint8_t> owns = ownership(A, options.sample_edges);
+  const Sampling layout = sampling(A, options.sample_edges);
+  const std::vector<uint8_t>& owns = layout.owns;
+  const double h = options.spacing * layout.mean_edge;
   std::vector<Partial> partial(m);
 
   tbb::parallel_for(tbb::blocked_range<int>(0, m, 256), [&](const tbb::blocked_range<int>& r) {
     for (int t = r.begin(); t != r.end(); ++t) {
       Partial& acc = partial[t];
       const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
-      // Consecutive samples are close: d(q, B) ≤ d(q_prev, B) + |q − q_prev| bounds the search.
-      // The bound is widened a little for rounding; if it still misses, search without bound.
-      Vec3 prev = Vec3::Zero();
-      double prev_d = -1.0;
+      // Consecutive samples are close: the previous one's triangle is tried first.
+      int hint = -1;
       auto sample = [&](const Vec3& q) {
-        double bound2 = std::numeric_limits<double>::infinity();
-        if (prev_d >= 0.0) {
-          const double bound = (prev_d + (q - prev).norm()) * (1.0 + 1e-6);
-          bound2 = bound * bound;
+        double best2 = std::numeric_limits<double>::infinity();
+        int best = -1;
+        if (!grid.closest(q, best2, best, hint)) {
+          const SurfacePoint sp = B.closest(q, best2);
+          if (sp.triangle >= 0) {
+            best2 = sp.dist2;
+            best = sp.triangle;
+          }
         }
-        SurfacePoint sp = B.closest(q, bound2);
-        if (sp.triangle < 0) sp = B.closest(q);
-        const double d = std::sqrt(sp.dist2);
+        hint = best;
+        const double d = std::sqrt(best2);
         acc.max = std::max(acc.max, d);
         acc.sum += d;
-        acc.sum2 += sp.dist2;
+        acc.sum2 += best2;
         ++acc.count;
-        prev = q;
-        prev_d = d;
       };
       for (int k = 0; k < 3; ++k)
         if (owns[t] & (1u << k)) sample(p[k]);
@@ -142,7 +181,6 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   stats.mean = sum / static_cast<double>(stats.samples);
   stats.rms = std::sqrt(sum2 / static_cast<double>(stats.samples));
 
-  const Positions& VB = B.positions();
   Eigen::RowVector3d lo = A.V.colwise().minCoeff(), hi = A.V.colwise().maxCoeff();
   if (VB.rows() > 0) {
     lo = lo.cwiseMin(VB.colwise().minCoeff());

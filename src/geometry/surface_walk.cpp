@@ -1,6 +1,9 @@
 #include "geometry/surface_walk.hpp"
 
+#include <array>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 #include "geometry/closest_point.hpp"
 #include "mesh/errors.hpp"
@@ -34,30 +37,35 @@ bool is_edge(TriangleRegion region) {
 }  // namespace
 
 bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, const Vec3& p,
-                  int start, int max_steps, SurfacePoint& out) {
-  if (start < 0 || start >= F.rows() || topo.num_triangles != F.rows()) {
+                  int start, int max_steps, SurfacePoint& out, const TrianglePlanes* planes) {
+  if (start < 0 || start >= F.rows() || topo.num_triangles != F.rows() ||
+      (planes && planes->size() != F.rows())) {
     std::ostringstream msg;
     msg << "walk_closest: start triangle " << start << " for a mesh of " << F.rows()
-        << " triangles (topology of " << topo.num_triangles << ")";
+        << " triangles (topology of " << topo.num_triangles << ", planes of "
+        << (planes ? planes->size() : -1) << ")";
     throw InputError(msg.str());
   }
-  auto test = [&](int t) {
-    return closest_point_on_triangle(p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(),
-                                     V.row(F(t, 2)).transpose());
+  // Whether triangle t is strictly closer than `best`; if so `best` becomes its closest point.
+  auto closer = [&](int t, TrianglePoint& best) {
+    if (planes) return planes->closer_than(t, p, best.dist2, V, F, best);
+    const TrianglePoint tp = closest_point_on_triangle(
+        p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(), V.row(F(t, 2)).transpose());
+    if (!(tp.dist2 < best.dist2)) return false;
+    best = tp;
+    return true;
   };
 
   int current = start;
-  TrianglePoint here = test(current);
+  TrianglePoint here{Vec3::Zero(), Vec3::Zero(), TriangleRegion::Face,
+                     std::numeric_limits<double>::infinity()};
+  closer(current, here);
+  TrianglePoint best;
   for (int steps = 0;; ++steps) {
     int next = -1;
-    TrianglePoint best = here;
+    best.dist2 = here.dist2;
     auto consider = [&](int t) {
-      if (t == current) return;
-      const TrianglePoint tp = test(t);
-      if (tp.dist2 < best.dist2) {
-        best = tp;
-        next = t;
-      }
+      if (t != current && closer(t, best)) next = t;
     };
     auto consider_fan = [&](int v) {
       const Csr& fan = topo.vertex_triangles;
@@ -68,8 +76,12 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
     if (k < 0) {
       // Inside the face: a point just inside a convex edge also projects into the face across
       // it, which may be closer. Trying the three edge neighbours catches that case.
-      for (int e = 0; e < 3; ++e)
-        if (const int across = topo.triangle_neighbours[current][e]; across >= 0) consider(across);
+      // The bends of the projection frames can tell that none of them is closer.
+      if (!planes || !planes->face_settles(current, p, here.bary)) {
+        const std::array<int, 3>& across = topo.triangle_neighbours[current];
+        for (int e = 0; e < 3; ++e)
+          if (across[e] >= 0 && closer(across[e], best)) next = across[e];
+      }
     } else {
       if (!is_edge(here.region)) {
         consider_fan(F(current, k));
@@ -81,16 +93,17 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
       }
     }
 
-    if (next < 0) {
-      out.triangle = current;
-      out.bary = here.bary;
-      out.point = here.point;
-      out.dist2 = here.dist2;
-      return true;
+    const TrianglePoint& end = next < 0 ? here : best;
+    if (next < 0 || steps >= max_steps) {
+      // Settled; or out of steps, and the closest point seen bounds the exact query.
+      out.triangle = next < 0 ? current : next;
+      out.bary = end.bary;
+      out.point = end.point;
+      out.dist2 = end.dist2;
+      return next < 0;
     }
-    if (steps >= max_steps) return false;
     current = next;
-    here = best;
+    std::swap(here, best);
   }
 }
 

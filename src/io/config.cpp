@@ -464,6 +464,110 @@ void read_run_controls(const Section& root, JobConfig& c) {
   read(root, "resume", c.resume);
 }
 
+// ---------------------------------------------------------------------------------------------
+// The optional visual outputs of the sequence job: output.colored, output.checker and
+// output.iterations (see io/output_options.hpp).
+
+const Names<ShearColorMode> kColorModes = {{"faces", ShearColorMode::Faces},
+                                           {"vertices", ShearColorMode::Vertices}};
+const Names<CheckerUvSource> kUvSources = {{"auto", CheckerUvSource::Auto},
+                                           {"charts", CheckerUvSource::Charts}};
+
+// "all", an array of frame indices, or a range "A:B[:STEP]".
+void read(const Section& s, const std::string& key, FrameSelection& out) {
+  const json* v = s.get(key);
+  if (!v) return;
+  const std::string path = s.path(key);
+  const std::string expected =
+      "expected \"all\", an array of frame indices or a range \"A:B[:STEP]\", got ";
+  if (v->is_string()) {
+    const std::string text = v->get<std::string>();
+    if (text == "all") {
+      out = FrameSelection{};
+      return;
+    }
+    if (text.find(':') == std::string::npos) fail(path, expected + describe(*v));
+    const FrameRange range = parse_frame_range(text, path);
+    out = FrameSelection{FrameSelection::Kind::Range, {}, range.start, range.stop, range.step};
+    return;
+  }
+  if (!v->is_array()) fail(path, expected + describe(*v));
+  FrameSelection selection = FrameSelection::none();
+  for (size_t i = 0; i < v->size(); ++i)
+    selection.list.push_back(to_int((*v)[i], path + "[" + std::to_string(i) + "]", 0));
+  std::sort(selection.list.begin(), selection.list.end());
+  selection.list.erase(std::unique(selection.list.begin(), selection.list.end()),
+                       selection.list.end());
+  out = std::move(selection);
+}
+
+json to_json(const FrameSelection& s) {
+  switch (s.kind) {
+    case FrameSelection::Kind::All:
+      return "all";
+    case FrameSelection::Kind::List:
+      return s.list;
+    case FrameSelection::Kind::Range:
+      return format_frame_range(FrameRange{s.start, s.stop, s.step});
+  }
+  return nullptr;
+}
+
+// An optional output: `true` (every default), `false` (off) or an object of the `known` keys,
+// which `parse` reads.
+template <class Parse>
+void read_optional_output(const Section& output, const std::string& key, bool& enabled,
+                          std::vector<std::string> known, Parse parse) {
+  const json* v = output.get(key);
+  if (!v) return;
+  if (v->is_boolean()) {
+    enabled = v->get<bool>();
+    return;
+  }
+  if (!v->is_object())
+    fail(output.path(key), "expected true, false or an object with the keys " + quoted_list(known) +
+                               ", got " + describe(*v));
+  enabled = true;
+  parse(Section(v, output.path(key), std::move(known)));
+}
+
+void read_visual_outputs(const Section& output, OutputConfig& o) {
+  read_optional_output(output, "colored", o.colored.enabled, {"frames", "max", "colors"},
+                       [&](const Section& s) {
+                         read(s, "frames", o.colored.frames);
+                         read(s, "max", o.colored.max, Interval{0.0, true, 1e6, false});
+                         read(s, "colors", o.colored.colors, kColorModes);
+                       });
+  read_optional_output(output, "checker", o.checker.enabled, {"frames", "uv", "cells", "cell_size"},
+                       [&](const Section& s) {
+                         read(s, "frames", o.checker.frames);
+                         read(s, "uv", o.checker.uv, kUvSources);
+                         read(s, "cells", o.checker.cells, 1, 64);
+                         read(s, "cell_size", o.checker.cell_size, Interval{0.0, true, 1e6, false});
+                       });
+  read_optional_output(output, "iterations", o.iterations.enabled, {"frames", "shear_frames"},
+                       [&](const Section& s) {
+                         read(s, "frames", o.iterations.frames);
+                         read(s, "shear_frames", o.iterations.shear_frames);
+                       });
+}
+
+void visual_outputs_to_json(const OutputConfig& o, json& j) {
+  j["colored"] = o.colored.enabled ? json{{"frames", to_json(o.colored.frames)},
+                                          {"max", o.colored.max},
+                                          {"colors", name_of(o.colored.colors, kColorModes)}}
+                                   : json(false);
+  j["checker"] = o.checker.enabled ? json{{"frames", to_json(o.checker.frames)},
+                                          {"uv", name_of(o.checker.uv, kUvSources)},
+                                          {"cells", o.checker.cells},
+                                          {"cell_size", o.checker.cell_size}}
+                                   : json(false);
+  j["iterations"] = o.iterations.enabled
+                        ? json{{"frames", to_json(o.iterations.frames)},
+                               {"shear_frames", to_json(o.iterations.shear_frames)}}
+                        : json(false);
+}
+
 }  // namespace
 
 // -----------------------------------------------------------------------------------------------
@@ -542,12 +646,14 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
 
   const Section output(&root.require("output", "an object with \"dir\", the output folder"),
                        "output",
-                       {"dir", "format", "gltf", "per_triangle_csv", "timings", "on_failure"});
+                       {"dir", "format", "gltf", "per_triangle_csv", "timings", "colored",
+                        "checker", "iterations", "on_failure"});
   output.require("dir", "the folder the results are written to");
   c.output.dir = read_path(output, "dir", base);
   read(output, "format", c.output.format, kFormats);
   read(output, "per_triangle_csv", c.output.per_triangle_csv);
   read(output, "timings", c.output.timings);
+  read_visual_outputs(output, c.output);
   read(output, "on_failure", c.output.on_failure, kOnFailure);
   if (c.output.format == OutputFormat::Gltf && !c.input.gltf)
     fail(output.path("format"),
@@ -607,6 +713,7 @@ json to_json(const JobConfig& c) {
                  {"per_triangle_csv", c.output.per_triangle_csv},
                  {"timings", c.output.timings},
                  {"on_failure", name_of(c.output.on_failure, kOnFailure)}};
+  visual_outputs_to_json(c.output, j["output"]);
   if (c.output.format == OutputFormat::Gltf)
     j["output"]["gltf"] = {{"frames_per_mesh", c.output.gltf.frames_per_mesh},
                            {"normals", c.output.gltf.normals}};

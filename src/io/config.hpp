@@ -13,6 +13,7 @@
 
 #include "io/gltf_load.hpp"
 #include "io/gltf_write.hpp"
+#include "io/output_options.hpp"
 #include "massage/massage.hpp"
 
 namespace sm {
@@ -86,12 +87,15 @@ struct OutputConfig {
   /// reproduces every output byte.
   bool timings = true;
   OnFailure on_failure = OnFailure::CopyInput;  ///< "on_failure": "copy_input" or "skip"
+  ColoredOutputOptions colored;    ///< "colored": shear as coloured PLY meshes, before and after
+  CheckerOutputOptions checker;    ///< "checker": frames with a checkerboard texture (OBJ+MTL+PNG)
+  IterationLogOptions iterations;  ///< "iterations": iterations.csv
 };
 
 /// "checks": when an optimized frame fails, besides a failed solve and non-finite positions
 /// (which always fail it). A folded triangle is an output triangle whose normal opposes the same
 /// triangle's normal in the input frame; a frame fails when its folded triangles exceed either
-/// limit. Real captures give a few per frame at most (README, "Numerical safety").
+/// limit. Real captures give a few per frame at most (README, "Failed frames").
 struct FrameChecks {
   /// "max_folded_triangles": the most folded triangles a frame may have, >= 0; null: no limit.
   std::optional<int> max_folded_triangles;
@@ -105,8 +109,8 @@ struct FrameChecks {
 /// runs block `index`. Its summary and report are named by shard (summary.shard-I-of-N.csv,
 /// report.shard-I-of-N.json); `seqmassage merge` combines the shards.
 struct ShardConfig {
-  int index =
-      0;  ///< "index": 0-based, < count (a Slurm array task id, a Kubernetes completion index)
+  /// "index": 0-based, < count (a Slurm array task id, a Kubernetes completion index)
+  int index = 0;
   int count = 1;  ///< "count": number of shards, >= 1; 1 = not sharded
   bool sharded() const { return count > 1; }
 };

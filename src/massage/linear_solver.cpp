@@ -29,29 +29,59 @@ void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y) {
   }
 }
 
-bool Ilu0::factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots) {
-  K_ = &K;
-  diag_ = diagonal_slots;
+IluSchedule::IluSchedule(const SparseMatrixR& K, const std::vector<int>& diagonal_slots)
+    : diagonal(diagonal_slots) {
   const int n = static_cast<int>(K.rows());
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();
-  lu_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
-  marker_.assign(n, -1);
+  std::vector<int> marker(n, -1);
+  row_lower.assign(1, 0);
+  update_begin.assign(1, 0);
   for (int i = 0; i < n; ++i) {
-    for (int p = outer[i]; p < outer[i + 1]; ++p) marker_[inner[p]] = p;
+    for (int p = outer[i]; p < outer[i + 1]; ++p) marker[inner[p]] = p;
     for (int p = outer[i]; p < outer[i + 1] && inner[p] < i; ++p) {
       const int j = inner[p];
-      const double pivot = lu_[diagonal_slots[j]];
-      lu_[p] /= pivot;
-      const double l = lu_[p];
-      if (l == 0.0) continue;
-      for (int q = diagonal_slots[j] + 1; q < outer[j + 1]; ++q) {
-        const int slot = marker_[inner[q]];
-        if (slot >= 0) lu_[slot] -= l * lu_[q];
-      }
+      lower.push_back(p);
+      pivot.push_back(diagonal_slots[j]);
+      for (int q = diagonal_slots[j] + 1; q < outer[j + 1]; ++q)
+        if (const int slot = marker[inner[q]]; slot >= 0) {
+          target.push_back(slot);
+          source.push_back(q);
+        }
+      update_begin.push_back(static_cast<int>(target.size()));
     }
-    for (int p = outer[i]; p < outer[i + 1]; ++p) marker_[inner[p]] = -1;
-    const double d = lu_[diagonal_slots[i]];
+    row_lower.push_back(static_cast<int>(lower.size()));
+    for (int p = outer[i]; p < outer[i + 1]; ++p) marker[inner[p]] = -1;
+  }
+}
+
+bool Ilu0::factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots) {
+  own_ = IluSchedule(K, diagonal_slots);
+  const bool ok = factor(K, own_);
+  schedule_ = nullptr;
+  return ok;
+}
+
+bool Ilu0::factor(const SparseMatrixR& K, const IluSchedule& schedule) {
+  K_ = &K;
+  schedule_ = &schedule;
+  const int n = static_cast<int>(K.rows());
+  lu_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+  double* lu = lu_.data();
+  const int* lower = schedule.lower.data();
+  const int* pivot = schedule.pivot.data();
+  const int* begin = schedule.update_begin.data();
+  const int* target = schedule.target.data();
+  const int* source = schedule.source.data();
+  for (int i = 0; i < n; ++i) {
+    for (int e = schedule.row_lower[i]; e < schedule.row_lower[i + 1]; ++e) {
+      const int p = lower[e];
+      lu[p] /= lu[pivot[e]];
+      const double l = lu[p];
+      if (l == 0.0) continue;
+      for (int u = begin[e]; u < begin[e + 1]; ++u) lu[target[u]] -= l * lu[source[u]];
+    }
+    const double d = lu[schedule.diagonal[i]];
     if (!(std::abs(d) > 0.0) || !std::isfinite(d)) return false;
   }
   return true;
@@ -59,7 +89,7 @@ bool Ilu0::factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots
 
 void Ilu0::apply(const Positions& R, Positions& Z) const {
   const SparseMatrixR& K = *K_;
-  const std::vector<int>& diag = diag_;
+  const std::vector<int>& diag = (schedule_ ? *schedule_ : own_).diagonal;
   const int n = static_cast<int>(K.rows());
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();

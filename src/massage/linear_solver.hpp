@@ -21,6 +21,26 @@ struct SolveStats {
 /// Y = K X for n×3 X, one pass over K.
 void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y);
 
+/// The symbolic part of ILU(0) on a fixed pattern (sorted columns, explicit diagonal): for every
+/// strictly lower entry, row after row, the slot of its pivot and the list of updates
+/// lu[target] −= l · lu[source] it makes. Computed once per pattern; factoring is then a straight
+/// pass over these lists.
+struct IluSchedule {
+  std::vector<int> diagonal;      ///< n slots
+  std::vector<int> row_lower;     ///< n+1 offsets into `lower`
+  std::vector<int> lower;         ///< slots of the strictly lower entries, in row order
+  std::vector<int> pivot;         ///< per lower entry: the slot of its column's diagonal
+  std::vector<int> update_begin;  ///< per lower entry: offsets into target/source (one more)
+  std::vector<int> target, source;
+
+  IluSchedule() = default;
+  IluSchedule(const SparseMatrixR& K, const std::vector<int>& diagonal_slots);
+  bool matches(const SparseMatrixR& K) const {
+    return static_cast<Eigen::Index>(diagonal.size()) == K.rows() &&
+           static_cast<Eigen::Index>(row_lower.size()) == K.rows() + 1;
+  }
+};
+
 /// Incomplete LU factorization with zero fill-in on K's own pattern (K must have sorted columns
 /// and an explicit diagonal). The structure is K's; factor() only recomputes the values.
 class Ilu0 {
@@ -28,14 +48,17 @@ class Ilu0 {
   /// Computes the factors of K's current values (K must outlive this object's use; the diagonal
   /// slots are copied). Returns false on a zero pivot.
   bool factor(const SparseMatrixR& K, const std::vector<int>& diagonal_slots);
+  /// The same with the symbolic analysis done beforehand (`schedule` must be K's pattern's and
+  /// outlive this object's use): the same factors, bit for bit, in about half the time.
+  bool factor(const SparseMatrixR& K, const IluSchedule& schedule);
   /// Z = (LU)⁻¹ R, n×3.
   void apply(const Positions& R, Positions& Z) const;
 
  private:
   const SparseMatrixR* K_ = nullptr;
-  std::vector<int> diag_;
+  const IluSchedule* schedule_ = nullptr;  ///< null: own_ (so that copies stay valid)
+  IluSchedule own_;
   std::vector<double> lu_;
-  std::vector<int> marker_;
 };
 
 /// Scratch vectors of bicgstab(), kept between calls so iterations allocate nothing.

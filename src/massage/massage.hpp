@@ -46,7 +46,7 @@ struct MassageOptions {
   bool lawson = true;          ///< "lawson": update α, β by eq. 5 after each iteration
   double lawson_floor = 1e-8;  ///< "lawson_floor": α, β kept >= this times their mean
   SolverKind solver = SolverKind::Iterative;   ///< "solver": "iterative" | "direct"
-  double solver_tolerance = 1e-10;             ///< "solver_tolerance": relative residual
+  double solver_tolerance = 1e-9;             ///< "solver_tolerance": relative residual
   int solver_max_iterations = 300;             ///< "solver_max_iterations"
   ClosestPointMode closest_points = ClosestPointMode::Local;  ///< "closest_points"
   int walk_max_steps = 16;     ///< "walk_max_steps": local search moves before the exact query
@@ -106,6 +106,9 @@ class Massager {
   const ShapeWeights& weights() const;
   const Triangles& triangles() const;
   int num_vertices() const;
+  /// The BVH of the template's triangles: run() refits a copy of it to M instead of building one,
+  /// and a Reference with the same connectivity may do the same (Reference's `tree`).
+  const TriangleBvh& template_bvh() const;
 
  private:
   struct Impl;

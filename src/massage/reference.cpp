@@ -38,7 +38,7 @@ Positions surface_samples(const TriMesh& mesh, const Topology& topo, SampleKind 
 }
 
 Reference::Reference(TriMesh mesh, SampleKind samples, const char* name,
-                     std::shared_ptr<const Topology> topology)
+                     std::shared_ptr<const Topology> topology, const TriangleBvh* tree)
     : mesh_(std::move(mesh)) {
   validate_mesh(mesh_, name);
   if (mesh_.num_triangles() == 0)
@@ -46,8 +46,16 @@ Reference::Reference(TriMesh mesh, SampleKind samples, const char* name,
   if (topology && (topology->num_vertices != mesh_.num_vertices() ||
                    topology->num_triangles != mesh_.num_triangles()))
     throw InputError(std::string(name) + ": connectivity does not match the shared topology");
-  topology_ = topology ? std::move(topology) : std::make_shared<const Topology>(build_topology(mesh_));
-  bvh_ = TriangleBvh(mesh_);
+  topology_ =
+      topology ? std::move(topology) : std::make_shared<const Topology>(build_topology(mesh_));
+  if (tree && !tree->empty() && tree->positions().rows() == mesh_.V.rows() &&
+      tree->triangles().rows() == mesh_.F.rows() && tree->triangles() == mesh_.F) {
+    bvh_ = *tree;
+    bvh_.refit(mesh_.V);
+  } else {
+    bvh_ = TriangleBvh(mesh_);
+  }
+  planes_.update(mesh_.V, mesh_.F, topology_.get());
   samples_ = surface_samples(mesh_, *topology_, samples);
   diagonal_ = sm::bounding_box_diagonal(mesh_.V);
 }

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "geometry/bvh.hpp"
+#include "geometry/triangle_planes.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
 
@@ -21,13 +22,16 @@ class Reference {
  public:
   /// Validates `mesh` (finite coordinates, indices in range: InputError naming `name`), builds its
   /// topology (or shares `topology` when the caller already has it for this connectivity), its
-  /// BVH and its samples.
+  /// BVH (or, when `tree` is a BVH over the same triangles, e.g. Massager::template_bvh(), a copy
+  /// of it refitted to these positions, which costs O(m) instead of O(m log m)), the projection
+  /// frames of its triangles and its samples.
   Reference(TriMesh mesh, SampleKind samples, const char* name = "reference",
-            std::shared_ptr<const Topology> topology = nullptr);
+            std::shared_ptr<const Topology> topology = nullptr, const TriangleBvh* tree = nullptr);
 
   const TriMesh& mesh() const { return mesh_; }
   const Topology& topology() const { return *topology_; }
   const TriangleBvh& bvh() const { return bvh_; }
+  const TrianglePlanes& planes() const { return planes_; }
   /// The samples w_j (s×3): N's vertices that lie in a triangle first, in order, then the extra
   /// ones (vertices in no triangle are not on the surface).
   const Positions& samples() const { return samples_; }
@@ -37,6 +41,7 @@ class Reference {
   TriMesh mesh_;
   std::shared_ptr<const Topology> topology_;
   TriangleBvh bvh_;
+  TrianglePlanes planes_;
   Positions samples_;
   double diagonal_ = 0.0;
 };

@@ -32,6 +32,7 @@ SystemPattern::SystemPattern(const SparseMatrixR& A, const Triangles& F) : struc
   double s = 0.0;
   for (int p = 0; p < structure_.nonZeros(); ++p) s += structure_.valuePtr()[p] * structure_.valuePtr()[p];
   shape_norm_ = std::sqrt(s);
+  ilu_ = IluSchedule(structure_, diag_);
 }
 
 void assemble_distance_system(const SystemPattern& pattern, const Triangles& F,

@@ -11,6 +11,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/weights.hpp"
+#include "massage/linear_solver.hpp"
 
 namespace sm {
 
@@ -28,12 +29,15 @@ class SystemPattern {
   /// Slot of entry (F(t,a), F(t,b)) in the value array: slots(t)[3a + b].
   const std::array<int, 9>& triangle_slots(int t) const { return tri_slots_[t]; }
   const std::vector<int>& diagonal_slots() const { return diag_; }
+  /// The symbolic ILU(0) analysis of the pattern (Ilu0::factor).
+  const IluSchedule& ilu_schedule() const { return ilu_; }
 
  private:
   SparseMatrixR structure_;
   double shape_norm_ = 0.0;
   std::vector<int> diag_;
   std::vector<std::array<int, 9>> tri_slots_;
+  IluSchedule ilu_;
 };
 
 /// The distance energy's normal equations B v = c (eq. 4) on the pattern:

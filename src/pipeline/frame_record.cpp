@@ -188,7 +188,8 @@ json to_json(const FrameRecord& r) {
           {"template_hash", r.template_hash},
           {"input_hash", r.input_hash},
           {"outputs", outputs},
-          {"summary", to_json(r.summary)}};
+          {"summary", to_json(r.summary)},
+          {"iterations_csv", r.iterations_csv}};
 }
 
 FrameRecord frame_record_from_json(const json& j) {
@@ -209,6 +210,7 @@ FrameRecord frame_record_from_json(const json& j) {
     r.outputs.push_back(std::move(o));
   }
   r.summary = frame_summary_from_json(at(j, "summary", ""));
+  r.iterations_csv = get<std::string>(j, "iterations_csv", "");
   return r;
 }
 

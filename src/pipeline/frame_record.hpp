@@ -33,7 +33,8 @@ struct FrameRecord {
   std::string template_hash;  ///< template_hash of the template
   std::string input_hash;     ///< FrameSource::input_hash of the frame
   std::vector<RecordedOutput> outputs;
-  FrameSummary summary;  ///< summary.csv's row and the frame's part of report.json
+  FrameSummary summary;        ///< summary.csv's row and the frame's part of report.json
+  std::string iterations_csv;  ///< the frame's iterations.csv rows (output.iterations), or ""
 };
 
 /// output_dir/records/<frame name with extension .json>.

@@ -5,9 +5,11 @@
 #include <set>
 
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/frame_sink.hpp"
+#include "pipeline/iteration_log.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
 
@@ -225,6 +227,7 @@ MergeResult merge_shards(const fs::path& output_dir) {
   // Every frame's record, of this job, with its outputs.
   MergeResult result;
   result.shards = N;
+  std::string iteration_rows;  // the records' iterations.csv rows, in frame order
   std::vector<int> bad_frames;
   std::string first_bad;
   for (int f : selected) {
@@ -250,6 +253,7 @@ MergeResult merge_shards(const fs::path& output_dir) {
       continue;
     }
     result.frames.push_back(r->summary);
+    iteration_rows += r->iterations_csv;
   }
   if (!bad_frames.empty()) {
     std::set<std::string> files;
@@ -284,6 +288,11 @@ MergeResult merge_shards(const fs::path& output_dir) {
     for (std::string& w : assemble_sequence_glb(whole, *input_source(), with_output))
       result.warnings.push_back(std::move(w));
     result.written.push_back("sequence.glb");
+  }
+  if (config.output.iterations.enabled) {
+    write_file_atomic(dir / "iterations.csv",
+                      CsvWriter(iteration_columns()).str() + iteration_rows);
+    result.written.push_back("iterations.csv");
   }
   json run;
   if (config.output.timings) {

@@ -145,7 +145,8 @@ ReportHeader report_header_from_json(const json& r) {
     h.input = need(r, "input", "");
     h.templ = need(r, "template", "");
     h.outputs = need(r, "outputs", "");
-    h.outputs["summary"] = "summary.csv";
+    h.outputs["summary"] = "summary.csv";  // a shard's own names are the run's
+    if (h.outputs.contains("iterations")) h.outputs["iterations"] = "iterations.csv";
     const json& totals = need(r, "totals", "");
     h.frames_listed = need(totals, "frames_listed", "totals.").get<int>();
     h.frames_selected = need(totals, "frames_selected", "totals.").get<int>();
@@ -244,7 +245,8 @@ json make_report(const ReportHeader& header, const std::vector<FrameSummary>& fr
 
 json make_report(const SequencePlan& plan, const SequenceResult& result) {
   const JobConfig& c = plan.config;
-  const ReportHeader header = report_header(plan);
+  ReportHeader header = report_header(plan);
+  header.outputs.update(result.extra_outputs);  // colored, checker, iterations
   json run;
   if (c.output.timings) {
     const size_t processed = result.frames.size() - size_t(result.resumed);

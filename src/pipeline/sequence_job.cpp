@@ -21,6 +21,7 @@
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
 #include "pipeline/fold_check.hpp"
+#include "pipeline/frame_extras.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
@@ -111,6 +112,7 @@ void check_outputs(const SequencePlan& plan) {
     outputs.push_back(record_file(c.output.dir, plan.source->name(index)));
     if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / distortion_file(plan, index));
   }
+  for (fs::path& file : plan.extras->files(plan.run_frames)) outputs.push_back(std::move(file));
   for (const fs::path& out : outputs)
     if (inputs.count(canonical(out)))
       throw ConfigError("output.dir: writing " + out.string() +
@@ -123,6 +125,7 @@ struct Work {
   std::string bytes;  // what the source fetched (the input file as read, if any)
   std::string out;    // the output frame, encoded by the sink
   std::string csv;    // per-triangle distortion (if asked)
+  ExtraFrame extras;  // colored, checker and iterations outputs (if asked)
   FrameSummary summary;
   bool has_output = true;  // false: failed, and output.on_failure is "skip"
   FrameRecord record;      // the record to write, or the one resumed from
@@ -176,7 +179,7 @@ std::string check_output(const SequencePlan& plan, const TriMesh& input, const P
   return "";
 }
 
-void process_frame(const SequencePlan& plan, Work& w) {
+void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   const auto t0 = Clock::now();
   const JobConfig& c = plan.config;
   const SourceFrame file = plan.source->decode(w.index, std::move(w.bytes));
@@ -195,6 +198,8 @@ void process_frame(const SequencePlan& plan, Work& w) {
 
   Positions V = file.mesh.V;
   bool unchanged = false;
+  std::optional<Reference> reference;
+  MassageResult result;
   if (w.index == plan.template_frame && !c.templ.optimize) {
     s.status = FrameStatus::Template;
     unchanged = true;
@@ -204,9 +209,9 @@ void process_frame(const SequencePlan& plan, Work& w) {
     unchanged = true;
   } else {
     const std::string name = frame_label(plan, w.index);
-    const Reference reference(file.mesh, c.massage.samples, name.c_str(),
-                              plan.massager->shared_topology());
-    const MassageResult result = plan.massager->run(file.mesh.V, reference);
+    reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology(),
+                      &plan.massager->template_bvh());
+    result = plan.massager->run(file.mesh.V, *reference);
     s.iterations = static_cast<int>(result.iterations.size());
     if (!result.ok) {
       s.status = FrameStatus::Failed;
@@ -220,8 +225,13 @@ void process_frame(const SequencePlan& plan, Work& w) {
       s.status = FrameStatus::Optimized;
       V = result.V;
       const TriMesh output{V, F};
-      s.out_to_in = one_sided_distance(output, reference.bvh());
-      s.in_to_out = one_sided_distance(file.mesh, TriangleBvh(output));
+      const Topology& topology = plan.massager->topology();
+      s.out_to_in =
+          one_sided_distance(output, reference->bvh(), {}, &reference->planes(), &topology);
+      TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
+      output_bvh.refit(V);
+      const TrianglePlanes output_planes(V, F, &topology);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
@@ -230,6 +240,12 @@ void process_frame(const SequencePlan& plan, Work& w) {
   s.shear_before = summarize_distortion(before);
   s.shear_after = summarize_distortion(after);
   if (c.output.per_triangle_csv && w.has_output) w.csv = format_distortion_csv(before, after);
+  if (plan.extras->any()) {
+    w.extras = extras.encode({w.index, &file, &V, &before, &after, reference ? &result : nullptr,
+                              reference ? &*reference : nullptr});
+    // In the frame's warnings, so that its record keeps it (resume, merge).
+    if (!w.extras.warning.empty()) s.warnings.insert(s.warnings.begin(), w.extras.warning);
+  }
 
   if (const std::optional<Positions> clean = plan.source->ground_truth(w.index)) {
     const double unit = mean_edge_length(plan.templ);
@@ -247,8 +263,10 @@ void process_frame(const SequencePlan& plan, Work& w) {
     r.outputs.push_back(recorded(plan.sink->output_file(w.index), w.out));
     if (c.output.per_triangle_csv)
       r.outputs.push_back(recorded(distortion_file(plan, w.index), w.csv));
+    for (const auto& [path, bytes] : w.extras.files) r.outputs.push_back(recorded(path, bytes));
   }
   r.summary = s;
+  r.iterations_csv = w.extras.iterations_csv;
 }
 
 }  // namespace
@@ -274,9 +292,12 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
 
   plan.source = make_frame_source(c);
   plan.sink = make_frame_sink(c, plan.source);
+  plan.extras = std::make_shared<const FrameExtras>(c, plan.source);
   const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
   plan.run_frames = shard_frames(plan.selected, c.shard);
+  for (std::string& warning : plan.extras->check(plan.selected))
+    plan.warnings.push_back(std::move(warning));
 
   if (c.templ.mesh.empty()) {
     if (c.templ.frame >= count)
@@ -355,6 +376,7 @@ std::string describe_plan(const SequencePlan& plan) {
   s << plan.sink->describe(plan.run_frames);
   if (c.output.per_triangle_csv)
     s << "  distortion/<name>.csv (" << plan.run_frames.size() << " files)\n";
+  s << plan.extras->describe(plan.run_frames);
   s << "  records/<name>.json (" << plan.run_frames.size() << " files)\n";
   s << "  " << summary_file_name(c.shard) << ", " << report_file_name(c.shard) << "\n";
   for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
@@ -377,7 +399,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
     fs::remove(out / name, ec);
   }
   plan.source->prepare();
+  for (const fs::path& dir : plan.extras->folders()) remove_stale_temporaries(dir);
   const std::unique_ptr<FrameWriter> writer = plan.sink->start();
+  const std::unique_ptr<ExtrasRun> extras = plan.extras->start(plan);
 
   const size_t total = plan.run_frames.size();
   size_t next = 0;
@@ -438,13 +462,14 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                     }
                   }
                   w->record.input_hash = input_hash;
-                  process_frame(plan, *w);
+                  process_frame(plan, *extras, *w);
                   return w;
                 })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
                 tbb::filter_mode::serial_in_order, guarded([&](std::shared_ptr<Work> w) {
                   if (w->resumed) {
                     if (w->has_output) writer->keep(w->index);
+                    extras->keep(w->record.iterations_csv);
                     ++result.resumed;
                   } else {
                     if (c.resume) ++result.redone[w->redo];
@@ -457,9 +482,13 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                     if (w->has_output) {
                       writer->write(w->index, w->out);
                       if (c.output.per_triangle_csv) write_file_atomic(csv, w->csv);
+                      extras->write(w->extras);
                     } else {
                       writer->skip(w->index);
                       fs::remove(csv, ec);
+                      for (const auto& [file, bytes] : w->extras.files) fs::remove(out / file, ec);
+                      w->extras.files.clear();
+                      extras->write(w->extras);  // its iterations.csv rows
                     }
                     write_file_atomic(record, to_json(w->record).dump(1) + "\n");
                   }
@@ -475,6 +504,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   });
   if (error) std::rethrow_exception(error);
   for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
+  result.extra_outputs = extras->finish();
   result.seconds = seconds_since(t0);
   write_file_atomic(out / summary_file_name(c.shard),
                     format_summary_csv(result.frames, c.output.timings));

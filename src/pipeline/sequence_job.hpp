@@ -21,6 +21,8 @@
 
 namespace sm {
 
+class FrameExtras;
+
 /// What happened to a frame.
 enum class FrameStatus {
   Optimized,  ///< "optimized": massaged and written with its new positions
@@ -67,6 +69,7 @@ struct SequencePlan {
   JobConfig config;
   std::shared_ptr<const FrameSource> source;  ///< every input frame, in order
   std::shared_ptr<const FrameSink> sink;      ///< where the corrected frames go
+  std::shared_ptr<const FrameExtras> extras;  ///< colored, checker and iterations outputs
   std::vector<int> selected;                  ///< indices of the job's selected frames, in order
   std::vector<int> run_frames;  ///< the frames this run processes: `selected`, or its shard of them
   int template_frame = -1;      ///< index of the template frame, -1 for a mesh
@@ -91,6 +94,7 @@ struct SequenceResult {
   std::map<std::string, int> redone;
   bool interrupted = false;  ///< stopped by RunHooks::cancel before every frame was done
   double seconds = 0.0;      ///< wall time of the whole run
+  nlohmann::json extra_outputs = nlohmann::json::object();  ///< report.json "outputs" entries
 };
 
 struct RunHooks {

@@ -43,6 +43,10 @@ std::string report_file_name(const ShardConfig& shard) {
   return "report" + shard_suffix(shard) + ".json";
 }
 
+std::string iterations_file_name(const ShardConfig& shard) {
+  return "iterations" + shard_suffix(shard) + ".csv";
+}
+
 std::string shard_label(const ShardConfig& shard) {
   return "shard " + format_shard(shard);
 }

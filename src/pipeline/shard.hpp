@@ -24,6 +24,9 @@ std::string summary_file_name(const ShardConfig& shard);
 /// "report.json", or "report.shard-I-of-N.json" for a shard.
 std::string report_file_name(const ShardConfig& shard);
 
+/// "iterations.csv" (output.iterations), or "iterations.shard-I-of-N.csv" for a shard.
+std::string iterations_file_name(const ShardConfig& shard);
+
 /// "shard 1/3" (I is 0-based).
 std::string shard_label(const ShardConfig& shard);
 

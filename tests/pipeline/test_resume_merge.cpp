@@ -225,3 +225,52 @@ TEST_CASE("a sharded glTF job: merge assembles sequence.glb from the shards' pos
     CHECK(merged.at(name) == bytes);
   }
 }
+
+TEST_CASE("visual outputs (colored, checker, iterations.csv) resume and merge like the frames") {
+  test::TempFolder dir("shards_extras");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(7));
+  c.output.colored.enabled = true;
+  c.output.checker.enabled = true;
+  c.output.iterations.enabled = true;
+  c.output.iterations.shear_frames = FrameSelection::none();
+  c.output.iterations.shear_frames.list = {2, 5};
+  run(c);
+  REQUIRE(fs::exists(dir / "out/iterations.csv"));
+  REQUIRE(fs::exists(dir / "out/colored/after/frame_0004.ply"));
+  const auto single = test::folder_bytes(dir / "out");
+  const auto record = read_frame_record(dir / "out/records/frame_0005.json");
+  REQUIRE(record);
+  CHECK(record->outputs.size() == 2 + 4);  // frame, table, colored and checker before/after
+  CHECK_FALSE(record->iterations_csv.empty());
+  fs::rename(dir / "out", dir / "single");
+
+  // Interrupted after 3 frames, then resumed: the same bytes, iterations.csv included.
+  std::atomic<bool> cancel{false};
+  RunHooks hooks;
+  hooks.cancel = &cancel;
+  hooks.progress = [&](const FrameSummary&, int done, int, double) {
+    if (done == 3) cancel = true;
+  };
+  CHECK(run(c, hooks).interrupted);
+  c.resume = true;
+  CHECK(run(c).resumed >= 3);
+  const auto resumed = test::folder_bytes(dir / "out");
+  CHECK(test::names_of(resumed) == test::names_of(single));
+  for (const auto& [name, bytes] : single) {
+    INFO(name);
+    CHECK(resumed.at(name) == bytes);
+  }
+  fs::remove_all(dir / "out");
+
+  // As 3 shards, merged: iterations.csv is rebuilt from the records.
+  c.resume = false;
+  const MergeResult m = run_shards(c, 3);
+  CHECK(m.written == std::vector<std::string>{"summary.csv", "report.json", "iterations.csv"});
+  const auto merged = test::folder_bytes(dir / "out", ".shard-");
+  CHECK(test::names_of(merged) == test::names_of(single));
+  for (const auto& [name, bytes] : single) {
+    INFO(name);
+    CHECK(merged.at(name) == bytes);
+  }
+  CHECK(fs::exists(dir / "out/iterations.shard-1-of-3.csv"));
+}

@@ -1,0 +1,207 @@
+#include "geometry/triangle_grid.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "mesh/errors.hpp"
+
+namespace sm {
+namespace {
+
+constexpr double kMaxCellsPerTriangle = 8.0;
+constexpr long kMaxCellsPerEntry = 64;
+constexpr int kChunk = 64;  // boxes tested per SIMD pass
+
+float round_up(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+}  // namespace
+
+TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes,
+                           double cell, const Topology* topo)
+    : V_(&V),
+      F_(&F),
+      planes_(&planes),
+      topo_(topo && topo->num_triangles == F.rows() ? topo : nullptr) {
+  const int m = static_cast<int>(F.rows());
+  if (planes.size() != m || !(cell > 0.0) || !std::isfinite(cell)) {
+    std::ostringstream msg;
+    msg << "TriangleGrid: " << planes.size() << " frames for " << m << " triangles, cell " << cell;
+    throw InputError(msg.str());
+  }
+  if (m == 0) return;
+  Eigen::AlignedBox3d box;
+  for (int t = 0; t < m; ++t)
+    for (int k = 0; k < 3; ++k) box.extend(V.row(F(t, k)).transpose());
+  // One cell of margin on every side, so that queries just off the mesh's box have a cell.
+  const Vec3 extent = box.sizes();
+  // Enlarge the cells while the grid would be too large for the mesh.
+  for (;;) {
+    double count = 1.0;
+    for (int a = 0; a < 3; ++a) count *= std::floor(extent[a] / cell) + 3.0;
+    if (count <= kMaxCellsPerTriangle * m + 4096.0) break;
+    cell *= std::cbrt(count / (kMaxCellsPerTriangle * m + 4096.0)) * 1.01;
+  }
+  cell_ = cell;
+  inv_cell_ = 1.0 / cell;
+  origin_ = box.min().array() - cell;
+  for (int a = 0; a < 3; ++a) dims_[a] = static_cast<int>(std::floor(extent[a] * inv_cell_)) + 3;
+  const long num_cells = long(dims_[0]) * dims_[1] * dims_[2];
+
+  // Cell ranges of every triangle's box; counting sort into CSR, triangles in index order.
+  std::vector<std::array<int, 6>> range(m);
+  cells_.assign(num_cells + 1, 0);
+  for (int t = 0; t < m; ++t) {
+    Eigen::AlignedBox3d tb;
+    for (int k = 0; k < 3; ++k) tb.extend(V.row(F(t, k)).transpose());
+    long count = 1;
+    for (int a = 0; a < 3; ++a) {
+      range[t][a] = std::clamp(static_cast<int>(std::floor((tb.min()[a] - origin_[a]) * inv_cell_)),
+                               0, dims_[a] - 1);
+      range[t][3 + a] = std::clamp(
+          static_cast<int>(std::floor((tb.max()[a] - origin_[a]) * inv_cell_)), 0, dims_[a] - 1);
+      count *= range[t][3 + a] - range[t][a] + 1;
+    }
+    if (count > kMaxCellsPerEntry) {
+      big_.push_back(t);
+      range[t][0] = -1;
+      continue;
+    }
+    for (int z = range[t][2]; z <= range[t][5]; ++z)
+      for (int y = range[t][1]; y <= range[t][4]; ++y)
+        for (int x = range[t][0]; x <= range[t][3]; ++x) ++cells_[cell_index(x, y, z) + 1];
+  }
+  for (long c = 0; c < num_cells; ++c) cells_[c + 1] += cells_[c];
+  const int entries = cells_[num_cells];
+  triangle_.resize(entries);
+  for (std::vector<float>& b : box_) b.resize(entries);
+  std::vector<int> fill(cells_.begin(), cells_.end() - 1);
+  for (int t = 0; t < m; ++t) {
+    if (range[t][0] < 0) continue;
+    float centre[3], half[3];  // [centre − half, centre + half] contains the box
+    for (int a = 0; a < 3; ++a) {
+      const double lo = std::min({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
+      const double hi = std::max({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
+      centre[a] = static_cast<float>(0.5 * (lo + hi));
+      half[a] = round_up(std::max(hi - centre[a], centre[a] - lo));
+    }
+    for (int z = range[t][2]; z <= range[t][5]; ++z)
+      for (int y = range[t][1]; y <= range[t][4]; ++y)
+        for (int x = range[t][0]; x <= range[t][3]; ++x) {
+          const int e = fill[cell_index(x, y, z)]++;
+          triangle_[e] = t;
+          for (int a = 0; a < 3; ++a) {
+            box_[a][e] = centre[a];
+            box_[3 + a][e] = half[a];
+          }
+        }
+  }
+  // The float box distance is off by a few units in the last place of the coordinates.
+  const double scale = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
+  margin_ = 1e-6 * (scale + cell_);
+}
+
+void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triangle,
+                        const int* skip) const {
+  const float px = static_cast<float>(p.x()), py = static_cast<float>(p.y()),
+              pz = static_cast<float>(p.z());
+  // A box farther than the best distance (plus the float test's error) cannot hold a closer point.
+  auto threshold = [&] {
+    const double r = std::sqrt(best2) + margin_;
+    return r * r < 3e38 ? static_cast<float>(r * r) : std::numeric_limits<float>::infinity();
+  };
+  float limit = threshold();
+  float d2[kChunk];
+  TrianglePoint tp;
+  for (int begin = cells_[cell], end = cells_[cell + 1]; begin < end; begin += kChunk) {
+    const int count = std::min(kChunk, end - begin);
+    const float *cx = &box_[0][begin], *cy = &box_[1][begin], *cz = &box_[2][begin];
+    const float *hx = &box_[3][begin], *hy = &box_[4][begin], *hz = &box_[5][begin];
+    // Distance beyond the box along an axis: (d + |d|) / 2 with d = |p − centre| − half,
+    // branch-free so that the loop vectorizes.
+#pragma omp simd
+    for (int i = 0; i < count; ++i) {
+      const float dx = std::fabs(px - cx[i]) - hx[i];
+      const float dy = std::fabs(py - cy[i]) - hy[i];
+      const float dz = std::fabs(pz - cz[i]) - hz[i];
+      const float ox = 0.5f * (dx + std::fabs(dx)), oy = 0.5f * (dy + std::fabs(dy)),
+                  oz = 0.5f * (dz + std::fabs(dz));
+      d2[i] = ox * ox + oy * oy + oz * oz;
+    }
+    for (int i = 0; i < count; ++i) {
+      if (!(d2[i] < limit)) continue;
+      const int t = triangle_[begin + i];
+      if (t == best_triangle || t == skip[0] || t == skip[1] || t == skip[2]) continue;
+      if (planes_->closer_than(t, p, best2, *V_, *F_, tp)) {
+        best2 = tp.dist2;
+        best_triangle = t;
+        limit = threshold();
+      }
+    }
+  }
+}
+
+bool TriangleGrid::closest(const Vec3& p, double& best2, int& best_triangle, int hint) const {
+  if (cells_.empty()) return false;
+  TrianglePoint tp;
+  int skip[3] = {-1, -1, -1};  // edge neighbours of a hint that settles in its face
+  if (hint >= 0 && hint != best_triangle && planes_->closer_than(hint, p, best2, *V_, *F_, tp)) {
+    best2 = tp.dist2;
+    best_triangle = hint;
+    if (topo_ && tp.region == TriangleRegion::Face && planes_->face_settles(hint, p, tp.bary))
+      for (int k = 0; k < 3; ++k) skip[k] = topo_->triangle_neighbours[hint][k];
+  }
+  for (int t : big_)
+    if (t != best_triangle && planes_->closer_than(t, p, best2, *V_, *F_, tp)) {
+      best2 = tp.dist2;
+      best_triangle = t;
+    }
+  int c[3];
+  double g[3];
+  for (int a = 0; a < 3; ++a) {
+    g[a] = (p[a] - origin_[a]) * inv_cell_;
+    if (!(g[a] >= 0.0 && g[a] < dims_[a])) return false;  // outside the grid (or NaN)
+    c[a] = static_cast<int>(g[a]);
+  }
+  scan(cell_index(c[0], c[1], c[2]), p, best2, best_triangle, skip);
+  // The ball through the best point within p's cell: nothing else to test.
+  double wall = 1.0;
+  for (int a = 0; a < 3; ++a) wall = std::min({wall, g[a] - c[a], c[a] + 1.0 - g[a]});
+  const double in_cell = (wall - 1e-9) * cell_;
+  if (in_cell > 0.0 && best2 < in_cell * in_cell) return true;
+  // Every triangle with a point strictly inside the ball of radius sqrt(best2) around p is
+  // listed in a cell the ball overlaps: test those cells too, if they are p's neighbours. When
+  // the ball still reaches beyond them, testing all the neighbours may shrink it enough.
+  int lo[3], hi[3];
+  auto ball_cells = [&] {
+    const double r = std::sqrt(best2);
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      // Padded by 1e-9 cells against rounding; beyond the grid there are no triangles.
+      const double glo = (p[a] - r - origin_[a]) * inv_cell_ - 1e-9;
+      const double ghi = (p[a] + r - origin_[a]) * inv_cell_ + 1e-9;
+      lo[a] = glo > 0.0 ? (glo < c[a] ? static_cast<int>(glo) : c[a]) : 0;
+      hi[a] = ghi < dims_[a] ? (ghi > c[a] ? static_cast<int>(ghi) : c[a]) : dims_[a] - 1;
+      if (lo[a] < c[a] - 1 || hi[a] > c[a] + 1) {
+        inside = false;
+        lo[a] = std::max(c[a] - 1, 0);
+        hi[a] = std::min(c[a] + 1, dims_[a] - 1);
+      }
+    }
+    return inside;
+  };
+  const bool inside = ball_cells();
+  for (int z = lo[2]; z <= hi[2]; ++z)
+    for (int y = lo[1]; y <= hi[1]; ++y)
+      for (int x = lo[0]; x <= hi[0]; ++x)
+        if (x != c[0] || y != c[1] || z != c[2])
+          scan(cell_index(x, y, z), p, best2, best_triangle, skip);
+  return inside || ball_cells();
+}
+
+}  // namespace sm

@@ -1,0 +1,296 @@
+// Benchmark of the sequence job (issue 3). Not a test: it asserts nothing.
+//
+//  1. Stages, one thread, in this process, on ../shared/data/sequences/vlasic_crane: every frame
+//     goes through the steps of the job's per-frame work (sequence_job.cpp, process_frame) one
+//     after the other, each timed in CPU time of the thread: read (file and OBJ parse), optimize
+//     (Reference and Massager::run), measure (shear of eq. 8 before and after, Metro-style
+//     distances both ways), write (corrected OBJ and per-triangle CSV, formatted and written
+//     atomically).
+//  2. The whole job: `seqmassage CONFIG --quiet` on the crane, with 1 and 2 threads, as a child
+//     process: wall time (planning, reading, writing included), frames/s and peak memory (max
+//     RSS), best of --repeat runs.
+//  3. Memory against sequence length: the generated bending-tube sequence (configs/demo.json
+//     style, "input": {"synthetic": ...}) with 50 and with 1000 frames, 2 threads: max RSS of
+//     each; it must not grow with the number of frames.
+//
+//   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
+//                  [--no-job] [--keep DIR] [--seqmassage PATH]
+//
+// --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "geometry/distance.hpp"
+#include "geometry/shear.hpp"
+#include "io/atomic_file.hpp"
+#include "io/frame_folder.hpp"
+#include "io/obj.hpp"
+#include "massage/massage.hpp"
+#include "pipeline/report.hpp"
+
+using namespace sm;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct ChildRun {
+  bool ok = false;
+  double seconds = 0.0;      ///< wall
+  double cpu_seconds = 0.0;  ///< user + system: the work done, less sensitive to other load
+  long max_rss_kb = 0;
+};
+
+// Runs `seqmassage config --quiet [--threads N]` and measures it from here: wall time and the
+// child's peak resident set.
+const char* g_seqmassage = SEQMASSAGE_BIN;
+
+ChildRun run_job(const fs::path& config, int threads, const fs::path& log) {
+  ChildRun run;
+  const std::string threads_arg = std::to_string(threads);
+  const auto t0 = Clock::now();
+  const pid_t pid = ::fork();
+  if (pid < 0) return run;
+  if (pid == 0) {
+    std::FILE* out = std::fopen(log.c_str(), "w");
+    if (out) {
+      ::dup2(::fileno(out), 1);
+      ::dup2(::fileno(out), 2);
+    }
+    ::execl(g_seqmassage, g_seqmassage, config.c_str(), "--quiet", "--threads", threads_arg.c_str(),
+            static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  int status = 0;
+  struct rusage usage {};
+  if (::wait4(pid, &status, 0, &usage) != pid) return run;
+  run.seconds = seconds_since(t0);
+  run.max_rss_kb = usage.ru_maxrss;
+  run.cpu_seconds = usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec + usage.ru_stime.tv_sec +
+                    1e-6 * usage.ru_stime.tv_usec;
+  run.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  return run;
+}
+
+ChildRun best_of(const fs::path& config, int threads, const fs::path& log, int repeat) {
+  ChildRun best;
+  for (int k = 0; k < repeat; ++k) {
+    const ChildRun r = run_job(config, threads, log);
+    if (!r.ok) return r;
+    if (k == 0 || r.seconds < best.seconds) best = r;
+  }
+  return best;
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+std::string json_path(const fs::path& p) {
+  std::string s;
+  for (char c : p.string()) {
+    if (c == '"' || c == '\\') s += '\\';
+    s += c;
+  }
+  return "\"" + s + "\"";
+}
+
+// CPU time of the calling thread: the stages run on one thread, and CPU time is not inflated
+// when other processes take the cores (wall time is, on a shared machine).
+double thread_seconds() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+// Stage timings of the per-frame work, one thread, mirroring process_frame.
+void stages(const fs::path& crane, const fs::path& scratch) {
+  tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+  const std::vector<fs::path> frames = list_frames(crane, ".obj");
+  const double t_setup = thread_seconds();
+  const TriMesh templ = read_obj(frames.front()).mesh;
+  const MassageOptions options;
+  const Massager massager(templ, options, "template");
+  const double setup = thread_seconds() - t_setup;
+  double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
+  int iterations = 0, count = 0;
+  fs::create_directories(scratch / "frames");
+  fs::create_directories(scratch / "distortion");
+  for (size_t k = 1; k < frames.size(); ++k) {
+    double t0 = thread_seconds();
+    const std::string bytes = read_file(frames[k]);
+    const ObjFile file = parse_obj(bytes, frames[k].string());
+    read += (thread_seconds() - t0);
+
+    t0 = thread_seconds();
+    const Reference reference(file.mesh, options.samples, "frame", massager.shared_topology(),
+                              &massager.template_bvh());
+    const MassageResult result = massager.run(file.mesh.V, reference);
+    optimize += (thread_seconds() - t0);
+    iterations += static_cast<int>(result.iterations.size());
+
+    t0 = thread_seconds();
+    const Eigen::VectorXd before = shear_distortion(templ.V, file.mesh.V, templ.F);
+    const Eigen::VectorXd after = shear_distortion(templ.V, result.V, templ.F);
+    const DistortionSummary sb = summarize_distortion(before), sa = summarize_distortion(after);
+    const double t_shear = (thread_seconds() - t0);
+    const TriMesh output{result.V, templ.F};
+    const Topology& topology = massager.topology();
+    const DistanceStats out_to_in =
+        one_sided_distance(output, reference.bvh(), {}, &reference.planes(), &topology);
+    TriangleBvh output_bvh = reference.bvh();
+    output_bvh.refit(result.V);
+    const TrianglePlanes output_planes(result.V, templ.F, &topology);
+    const DistanceStats in_to_out =
+        one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
+    measure += (thread_seconds() - t0);
+    shear += t_shear;
+    distance += (thread_seconds() - t0) - t_shear;
+
+    t0 = thread_seconds();
+    const std::string obj = format_obj(file, result.V);
+    const std::string csv = format_distortion_csv(before, after);
+    write_file_atomic(scratch / "frames" / frames[k].filename(), obj);
+    write_file_atomic(
+        scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"), csv);
+    write += (thread_seconds() - t0);
+    ++count;
+    std::printf(
+        "  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
+        "in->out max %.3e rms %.3e | %d its\n",
+        frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, out_to_in.max,
+        out_to_in.rms, in_to_out.max, in_to_out.rms, static_cast<int>(result.iterations.size()));
+  }
+  const double total = read + optimize + measure + write;
+  std::printf(
+      "stages, 1 thread, CPU time, %d optimized frames of %d vertices (template setup %.1f ms,"
+      " once):\n"
+      "  read     %7.1f ms/frame  (%4.1f%%)\n"
+      "  optimize %7.1f ms/frame  (%4.1f%%)  %.1f ms per iteration, %.1f iterations/frame\n"
+      "  measure  %7.1f ms/frame  (%4.1f%%)  shear %.1f ms, distances %.1f ms\n"
+      "  write    %7.1f ms/frame  (%4.1f%%)\n"
+      "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
+      count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
+      1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
+      double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
+      1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * total / count,
+      count / total);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
+  fs::path keep;
+  int repeat = 3, short_frames = 50, long_frames = 1000;
+  bool memory = true, stage_timings = true, job = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--data")
+      data = next();
+    else if (a == "--repeat")
+      repeat = std::max(1, std::stoi(next()));
+    else if (a == "--short")
+      short_frames = std::stoi(next());
+    else if (a == "--long")
+      long_frames = std::stoi(next());
+    else if (a == "--no-memory")
+      memory = false;
+    else if (a == "--no-stages")
+      stage_timings = false;
+    else if (a == "--no-job")
+      job = false;
+    else if (a == "--keep")
+      keep = next();
+    else if (a == "--seqmassage") {
+      static std::string bin;
+      bin = next();
+      g_seqmassage = bin.c_str();
+    } else {
+      std::fprintf(stderr,
+                   "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
+                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]\n");
+      return 2;
+    }
+  }
+  const fs::path scratch =
+      keep.empty() ? fs::temp_directory_path() / ("bench_sequence." + std::to_string(::getpid()))
+                   : keep;
+  fs::create_directories(scratch);
+  std::printf("bench_sequence: seqmassage %s, scratch %s\n", g_seqmassage,
+              scratch.string().c_str());
+
+  const fs::path crane = data / "sequences" / "vlasic_crane";
+  if (!fs::exists(crane / "frame_0000.obj")) {
+    std::printf("crane: skipped, %s not found (the real data lives in ../shared/data)\n",
+                crane.string().c_str());
+  } else if (stage_timings) {
+    stages(crane, scratch / "stages");
+  }
+  if (job && fs::exists(crane / "frame_0000.obj")) {
+    const int frames = static_cast<int>(list_frames(crane, ".obj").size());
+    const fs::path config = scratch / "crane.json";
+    write_text(config, "{ \"job\": \"sequence\", \"input\": { \"frames\": " +
+                           json_path(fs::absolute(crane)) +
+                           " },\n  \"output\": { \"dir\": " + json_path(scratch / "crane") +
+                           ", \"per_triangle_csv\": true },\n  \"template\": { \"frame\": 0 } }\n");
+    std::printf(
+        "whole job, `seqmassage crane.json --quiet --threads N` (%d frames, I/O included, "
+        "best of %d):\n",
+        frames, repeat);
+    for (int threads : {1, 2}) {
+      const ChildRun r = best_of(config, threads, scratch / "crane.log", repeat);
+      if (!r.ok) {
+        std::printf("  %d thread(s): FAILED, see %s\n", threads,
+                    (scratch / "crane.log").string().c_str());
+        continue;
+      }
+      std::printf("  %d thread(s): %7.3f s wall (%6.3f s CPU), %6.1f frames/s, max RSS %6.1f MB\n",
+                  threads, r.seconds, r.cpu_seconds, frames / r.seconds, r.max_rss_kb / 1024.0);
+    }
+  }
+
+  if (memory) {
+    std::printf("memory against sequence length (generated bending tube, 2 threads):\n");
+    for (int frames : {short_frames, long_frames}) {
+      const fs::path config = scratch / ("tube" + std::to_string(frames) + ".json");
+      write_text(config, "{ \"job\": \"sequence\", \"input\": { \"synthetic\": { \"frames\": " +
+                             std::to_string(frames) + " } },\n  \"output\": { \"dir\": " +
+                             json_path(scratch / ("tube" + std::to_string(frames))) +
+                             ", \"per_triangle_csv\": true } }\n");
+      const ChildRun r = run_job(config, 2, scratch / "tube.log");
+      if (!r.ok) {
+        std::printf("  %5d frames: FAILED, see %s\n", frames,
+                    (scratch / "tube.log").string().c_str());
+        continue;
+      }
+      std::printf("  %5d frames: max RSS %6.1f MB, %7.2f s wall (%7.2f s CPU), %6.1f frames/s\n",
+                  frames, r.max_rss_kb / 1024.0, r.seconds, r.cpu_seconds, frames / r.seconds);
+    }
+  }
+  if (keep.empty()) fs::remove_all(scratch);
+  return 0;
+}
