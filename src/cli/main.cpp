@@ -17,10 +17,12 @@
 #include "io/config.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/measure_files.hpp"
+#include "pipeline/merge.hpp"
 #include "pipeline/mesh_job.hpp"
 #include "pipeline/mesh_report.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/sequence_job.hpp"
+#include "pipeline/shard.hpp"
 
 namespace {
 
@@ -33,11 +35,13 @@ enum ExitCode : int {
   kInput = 3,
   kIo = 4,
   kProcessing = 5,
-  kInterrupted = 130,
+  kInterrupted = 130,  // 128 + SIGINT
+  kTerminated = 143,   // 128 + SIGTERM
 };
 
 constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
        seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
+       seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
 
 Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
 by its "job" key:
@@ -58,16 +62,24 @@ Options:
                         N:N+1); overrides "input.range"
       --dry-run         check the config and every input, print what would be done, write
                         nothing
+      --resume          skip the frames whose record (records/<frame>.json) shows complete
+                        outputs made with the same config, template and input (sets "resume")
+      --shard I/N       run shard I (0-based) of N: the I-th of N contiguous blocks of the
+                        selected frames (sets "shard"); its summary and report are
+                        summary.shard-I-of-N.csv and report.shard-I-of-N.json, and
+                        'seqmassage merge OUTPUT_DIR' combines the shards
   -q, --quiet           no progress and no summary; errors and failed frames only
 
 Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
 with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
 
 Outputs (under "output.dir"): for a sequence, frames/<input name>.obj (or, with "format": "gltf",
-sequence.glb), distortion/<frame>.csv (with "per_triangle_csv"), summary.csv (one row per frame)
-and report.json; for the other jobs, <input file name> (in "output.format"), measures.csv (before
-and after), report.json and, with "per_triangle_csv", triangles.csv. --frames applies to
-sequences only.
+positions/<frame>.bin and sequence.glb), distortion/<frame>.csv (with "per_triangle_csv"),
+records/<frame>.json (what made each frame, its summary row and its outputs' SHA-256),
+summary.csv (one row per frame) and report.json; for the other jobs, <input file name> (in
+"output.format"), measures.csv (before and after), report.json and, with "per_triangle_csv",
+triangles.csv. --frames, --resume and --shard apply to sequences only. Every file is written
+to a temporary name and renamed when complete, so a killed run leaves complete files only.
 
 Exit status:
   0    every frame (or the mesh) was processed
@@ -75,12 +87,40 @@ Exit status:
   2    usage or config error: bad option, missing config file, invalid JSON, unknown key,
        wrong type or out-of-range value, an output folder that would overwrite an input
   3    input error: a malformed frame, template or glTF file (the message names the glTF
-       element), frames with different vertex counts or faces
+       element), frames with different vertex counts or faces; for merge, missing,
+       incomplete or inconsistent shards (named, with the frames concerned)
   4    I/O error: a file or folder cannot be read or written
-  5    processing error: some frames failed numerically (reason in summary.csv and on stderr);
-       they are written unchanged and the other frames are complete. For a single-mesh job,
-       the optimizer failed: no mesh is written, report.json holds the reason
-  130  interrupted (Ctrl-C): the frames done so far are written and listed in summary.csv
+  5    processing error: some frames failed (the optimizer failed, non-finite positions, or
+       more folded triangles than "checks" allow; reason in summary.csv and on stderr); they
+       are written unchanged (or not at all: "output": {"on_failure": "skip"}) and the other
+       frames are complete. For a single-mesh job, the optimizer failed: no mesh is written,
+       report.json holds the reason
+  130  interrupted (Ctrl-C, SIGINT): the frames in flight were finished; the frames done are
+       written and listed in summary.csv; --resume continues
+  143  terminated (SIGTERM, as schedulers send): the same as 130
+A second SIGINT or SIGTERM ends the program at once; like SIGKILL, it leaves complete files
+only, and --resume continues.
+)";
+
+constexpr const char* kMergeHelp = R"(Usage: seqmassage merge [options] OUTPUT_DIR
+
+Combines the shards of a sequence job run with --shard I/N (every shard writing into OUTPUT_DIR)
+into the outputs of one run: summary.csv and report.json, byte for byte what a single unsharded
+run of the same config writes (with "output": {"timings": false}; with timings on, the seconds
+differ), and for "format": "gltf" sequence.glb, assembled from every shard's positions/ files
+(this reads the glTF input again). It checks first that all N shard reports
+(report.shard-I-of-N.json) are there and complete, that every shard ran the same job (the same
+config apart from "threads" and "frames_in_flight", template and program: their hashes), and
+that every selected frame is in exactly one shard, with its record and outputs. The shard files
+are left in place.
+
+Options:
+  -h, --help    print this help and exit
+  -q, --quiet   print nothing but errors
+
+Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
+the command that redoes them), nothing written; 4 I/O error; 5 merged, but some frames failed
+(as for a run).
 )";
 
 constexpr const char* kMeasureHelp = R"(Usage: seqmassage measure [options] MESH REFERENCE
@@ -113,6 +153,8 @@ struct Args {
   fs::path config;
   std::optional<int> threads;
   std::optional<std::string> frames;
+  std::optional<std::string> shard;
+  bool resume = false;
   bool dry_run = false;
   bool quiet = false;
 };
@@ -162,6 +204,12 @@ std::optional<Args> parse_args(int argc, char** argv, int& exit_code) {
       const auto v = take();
       if (!v) return usage("--frames needs a value A:B[:STEP]");
       args.frames = *v;
+    } else if (a == "--shard") {
+      const auto v = take();
+      if (!v) return usage("--shard needs a value I/N");
+      args.shard = *v;
+    } else if (a == "--resume" && !value) {
+      args.resume = true;
     } else if (a == "--dry-run" && !value) {
       args.dry_run = true;
     } else if ((a == "-q" || a == "--quiet") && !value) {
@@ -186,10 +234,25 @@ std::optional<Args> parse_args(int argc, char** argv, int& exit_code) {
 }
 
 std::atomic<bool> g_interrupted{false};
+volatile std::sig_atomic_t g_signal = 0;  // the first SIGINT or SIGTERM received
 
-extern "C" void on_interrupt(int) {
+extern "C" void on_stop_signal(int sig) {
+  if (g_signal == 0) g_signal = sig;
   g_interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the program at once
+  // A second one ends the program at once (the default action): files stay complete anyway.
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  ::sigaction(SIGINT, &dfl, nullptr);
+  ::sigaction(SIGTERM, &dfl, nullptr);
+}
+
+// Installs (or, with `on` false, removes) the SIGINT and SIGTERM handler.
+void catch_stop_signals(bool on) {
+  struct sigaction action {};
+  action.sa_handler = on ? on_stop_signal : SIG_DFL;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
 }
 
 std::string clock_text(double seconds) {
@@ -218,13 +281,15 @@ std::string shown(const fs::path& p) {
 // Progress on stderr: a bar redrawn in place on a terminal, one line per frame otherwise.
 class Progress {
  public:
-  Progress(bool quiet, bool terminal) : quiet_(quiet), terminal_(terminal) {}
+  Progress(bool quiet, bool terminal, sm::OnFailure on_failure)
+      : quiet_(quiet), terminal_(terminal), on_failure_(on_failure) {}
 
   void frame(const sm::FrameSummary& f, int done, int total, double elapsed) {
     if (f.status == sm::FrameStatus::Failed) {
       clear();
-      std::cerr << "seqmassage: frame " << f.frame << " (" << f.file
-                << ") failed, written unchanged: " << f.failure << "\n";
+      std::cerr << "seqmassage: frame " << f.frame << " (" << f.file << ") failed, "
+                << (on_failure_ == sm::OnFailure::Skip ? "not written" : "written unchanged")
+                << (f.resumed ? " (in an earlier run)" : "") << ": " << f.failure << "\n";
     }
     if (quiet_) return;
     const double rate = elapsed > 0 ? done / elapsed : 0.0;
@@ -240,8 +305,9 @@ class Progress {
       if (done == total) clear();
     } else {
       std::cerr << "frame " << done << "/" << total << " " << f.file << ": "
-                << sm::status_name(f.status) << ", mean shear " << fixed(f.shear_before.mean, 4)
-                << " -> " << fixed(f.shear_after.mean, 4) << ", " << f.iterations << " iterations, "
+                << sm::status_name(f.status) << (f.resumed ? " (kept from an earlier run)" : "")
+                << ", mean shear " << fixed(f.shear_before.mean, 4) << " -> "
+                << fixed(f.shear_after.mean, 4) << ", " << f.iterations << " iterations, "
                 << fixed(rate, 2) << " frames/s, ETA " << clock_text(eta) << "\n";
     }
   }
@@ -254,6 +320,7 @@ class Progress {
  private:
   bool quiet_;
   bool terminal_;
+  sm::OnFailure on_failure_;
   bool drawn_ = false;
 };
 
@@ -266,6 +333,8 @@ int run(const Args& args) {
   sm::JobConfig config = std::get<sm::JobConfig>(std::move(any));
   if (args.threads) config.threads = *args.threads;
   if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
+  if (args.shard) config.shard = sm::parse_shard(*args.shard, "--shard");
+  if (args.resume) config.resume = true;
   const sm::SequencePlan plan = sm::plan_sequence_job(config);
   if (args.dry_run) {
     std::cout << sm::describe_plan(plan) << "dry run: nothing written\n";
@@ -273,22 +342,28 @@ int run(const Args& args) {
   }
   if (!args.quiet) {
     for (const std::string& w : plan.warnings) std::cerr << "seqmassage: warning: " << w << "\n";
-    std::cerr << "seqmassage: " << plan.selected.size() << " frames, template "
-              << plan.template_source << ", " << plan.threads << " threads\n";
+    std::cerr << "seqmassage: " << plan.run_frames.size() << " frames";
+    if (plan.config.shard.sharded())
+      std::cerr << " (" << sm::shard_label(plan.config.shard) << " of " << plan.selected.size()
+                << " selected)";
+    std::cerr << ", template " << plan.template_source << ", " << plan.threads << " threads"
+              << (plan.config.resume ? ", resuming" : "") << "\n";
   }
 
-  Progress progress(args.quiet, ::isatty(STDERR_FILENO) == 1);
+  Progress progress(args.quiet, ::isatty(STDERR_FILENO) == 1, plan.config.output.on_failure);
   sm::RunHooks hooks;
   hooks.cancel = &g_interrupted;
   hooks.progress = [&](const sm::FrameSummary& f, int done, int total, double elapsed) {
     progress.frame(f, done, total, elapsed);
   };
-  std::signal(SIGINT, on_interrupt);
+  catch_stop_signals(true);
   const sm::SequenceResult result = sm::run_sequence_job(plan, hooks);
-  std::signal(SIGINT, SIG_DFL);
+  catch_stop_signals(false);
   progress.clear();
 
   const fs::path& out = plan.config.output.dir;
+  const std::string summary = sm::summary_file_name(plan.config.shard);
+  const std::string report = sm::report_file_name(plan.config.shard);
   if (!args.quiet) {
     double before = 0, after = 0;
     for (const sm::FrameSummary& f : result.frames) {
@@ -296,23 +371,36 @@ int run(const Args& args) {
       after += f.shear_after.mean;
     }
     const double n = std::max<size_t>(1, result.frames.size());
+    if (plan.config.resume) {
+      std::cerr << "seqmassage: resume: " << result.resumed << " frames kept from earlier runs, "
+                << result.frames.size() - size_t(result.resumed) << " processed";
+      std::string why;
+      for (const auto& [reason, count] : result.redone)
+        why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + reason;
+      std::cerr << (why.empty() ? "" : " (" + why + ")") << "\n";
+    }
     std::cerr << "seqmassage: " << result.frames.size() << " frames in " << fixed(result.seconds, 1)
               << " s (" << result.failed << " failed), mean shear " << fixed(before / n, 4)
               << " -> " << fixed(after / n, 4) << "\n";
     const bool glb = plan.config.output.format == sm::OutputFormat::Gltf;
-    std::cout << "results: " << shown(out) << "/ (" << (glb ? "sequence.glb, " : "frames/, ")
-              << (plan.config.output.per_triangle_csv ? "distortion/, " : "")
-              << "summary.csv, report.json)\n";
+    const bool sharded = plan.config.shard.sharded();
+    std::cout << "results: " << shown(out) << "/ ("
+              << (glb ? (sharded ? "positions/, " : "sequence.glb, ") : "frames/, ")
+              << (plan.config.output.per_triangle_csv ? "distortion/, " : "") << summary << ", "
+              << report << ")\n";
+    if (sharded && !result.interrupted)
+      std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }
   if (result.interrupted) {
-    std::cerr << "seqmassage: interrupted after " << result.frames.size() << " of "
-              << plan.selected.size() << " frames; they are written and listed in "
-              << shown(out / "summary.csv") << "\n";
-    return kInterrupted;
+    std::cerr << "seqmassage: " << (g_signal == SIGTERM ? "terminated (SIGTERM)" : "interrupted")
+              << " after " << result.frames.size() << " of " << plan.run_frames.size()
+              << " frames; they are written and listed in " << shown(out / summary)
+              << "; run again with --resume to finish\n";
+    return g_signal == SIGTERM ? kTerminated : kInterrupted;
   }
   if (result.failed > 0) {
     std::cerr << "seqmassage: " << result.failed << " of " << result.frames.size()
-              << " frames failed (see " << shown(out / "summary.csv") << ")\n";
+              << " frames failed (see " << shown(out / summary) << ")\n";
     return kProcessing;
   }
   return kOk;
@@ -322,9 +410,12 @@ int run(const Args& args) {
 // The single-mesh jobs (remesh, crossparam, smooth) and the measure command.
 
 int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
-  if (args.frames)
-    throw sm::ConfigError("--frames: only for \"job\": \"sequence\" (this is a " +
-                          sm::job_name(config.job) + " job)");
+  for (const auto& [given, option] :
+       {std::pair{args.frames.has_value(), "--frames"},
+        std::pair{args.shard.has_value(), "--shard"}, std::pair{args.resume, "--resume"}})
+    if (given)
+      throw sm::ConfigError(std::string(option) + ": only for \"job\": \"sequence\" (this is a " +
+                            sm::job_name(config.job) + " job)");
   if (args.threads) config.threads = *args.threads;
   const sm::MeshJobPlan plan = sm::plan_mesh_job(config);
   if (args.dry_run) {
@@ -439,6 +530,51 @@ std::optional<sm::MeasureFilesRequest> parse_measure_args(int argc, char** argv,
   return args;
 }
 
+// "seqmassage merge [options] OUTPUT_DIR" (argv[0] is "merge").
+int run_merge_command(int argc, char** argv) {
+  bool quiet = false;
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      std::cout << kMergeHelp;
+      return kOk;
+    } else if (a == "-q" || a == "--quiet") {
+      quiet = true;
+    } else if (a == "--") {
+      for (++i; i < argc; ++i) positional.push_back(argv[i]);
+    } else if (a.size() > 1 && a[0] == '-') {
+      std::cerr << "seqmassage merge: unknown option '" << a
+                << "'\nTry 'seqmassage merge --help'.\n";
+      return kUsage;
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (positional.size() != 1) {
+    std::cerr << "seqmassage merge: expected one output folder, got " << positional.size()
+              << "\nTry 'seqmassage merge --help'.\n";
+    return kUsage;
+  }
+  const fs::path dir = positional[0];
+  const sm::MergeResult result = sm::merge_shards(dir);
+  if (!quiet) {
+    std::cerr << "seqmassage: merged " << result.shards << " shards, " << result.frames.size()
+              << " frames (" << result.failed << " failed)\n";
+    std::string files;
+    for (const std::string& f : result.written) files += (files.empty() ? "" : ", ") + f;
+    std::cout << "results: " << shown(dir) << "/ (" << files << ")\n";
+  }
+  if (result.failed > 0) {
+    for (const sm::FrameSummary& f : result.frames)
+      if (f.status == sm::FrameStatus::Failed)
+        std::cerr << "seqmassage: frame " << f.frame << " (" << f.file << ") failed: " << f.failure
+                  << "\n";
+    return kProcessing;
+  }
+  return kOk;
+}
+
 int run_measure(const sm::MeasureFilesRequest& request) {
   std::cout << sm::measure_files(request).table;
   return kOk;
@@ -474,6 +610,8 @@ int guarded(Body&& body, const std::string& config_name) {
 
 int main(int argc, char** argv) {
   int exit_code = kOk;
+  if (argc > 1 && std::string(argv[1]) == "merge")
+    return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
   if (argc > 1 && std::string(argv[1]) == "measure") {
     const auto args = parse_measure_args(argc - 1, argv + 1, exit_code);
     if (!args) return exit_code;

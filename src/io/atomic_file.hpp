@@ -11,13 +11,21 @@ namespace sm {
 inline constexpr std::string_view kTempSuffix = ".seqmassage-tmp";
 
 /// Writes `content` to `path` atomically (temporary file, flush, fsync, rename). Creates missing
-/// parent folders. Throws IoError naming the file and the system's reason.
+/// parent folders. Throws IoError naming the file and the system's reason. The temporary file is
+/// `<path>.<host>-<pid>.<counter>.seqmassage-tmp`: unique per process and call, and naming its
+/// writer, so that processes sharing an output folder (shards) never touch each other's.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
 /// Reads a whole file. Throws IoError naming the file when it cannot be opened or read.
 std::string read_file(const std::filesystem::path& path);
 
-/// Deletes temporary files left in `dir` (not recursive) by an interrupted run; returns how many.
+/// "<host>-<pid>" of this process (the host name with characters other than letters, digits,
+/// '-' and '_' replaced by '_'): the writer tag in temporary file names.
+std::string temporary_owner();
+
+/// Deletes the temporary files in `dir` (not recursive) that a process of this host left when it
+/// was killed: those whose writer process no longer runs (a live writer, e.g. another shard, is
+/// left alone, and so are other hosts' files, which no run ever reads). Returns how many.
 int remove_stale_temporaries(const std::filesystem::path& dir);
 
 }  // namespace sm

@@ -325,6 +325,8 @@ const Names<SolverKind> kSolvers = {{"iterative", SolverKind::Iterative},
 const Names<ClosestPointMode> kClosest = {{"local", ClosestPointMode::Local},
                                           {"exact", ClosestPointMode::Exact}};
 const Names<OutputFormat> kFormats = {{"obj", OutputFormat::Obj}, {"gltf", OutputFormat::Gltf}};
+const Names<OnFailure> kOnFailure = {{"copy_input", OnFailure::CopyInput},
+                                     {"skip", OnFailure::Skip}};
 const std::vector<std::string> kShapes = {"bending_tube"};
 
 void read_massage(const Section& s, MassageOptions& o) {
@@ -434,6 +436,32 @@ void read_sequence_input(const Section& input, const fs::path& base, InputConfig
   if (const json* stop = range.get("stop"); stop && !stop->is_null())
     in.range.stop = to_int(*stop, range.path("stop"), in.range.start);
   read(range, "step", in.range.step, 1);
+}
+
+// "checks", "shard" and "resume" of the sequence job.
+void read_run_controls(const Section& root, JobConfig& c) {
+  const Section checks(root.get("checks"), "checks",
+                       {"max_folded_triangles", "max_folded_fraction"});
+  if (const json* v = checks.get("max_folded_triangles")) {
+    if (v->is_null())
+      c.checks.max_folded_triangles.reset();
+    else
+      c.checks.max_folded_triangles = to_int(*v, checks.path("max_folded_triangles"), 0);
+  }
+  if (const json* v = checks.get("max_folded_fraction")) {
+    if (v->is_null()) {
+      c.checks.max_folded_fraction.reset();
+    } else {
+      c.checks.max_folded_fraction.emplace();
+      read(checks, "max_folded_fraction", *c.checks.max_folded_fraction,
+           Interval{0.0, false, 1.0, false});
+    }
+  }
+  const Section shard(root.get("shard"), "shard", {"index", "count"});
+  read(shard, "count", c.shard.count, 1, 100000);
+  if (const json* v = shard.get("index"))
+    c.shard.index = to_int(*v, shard.path("index"), 0, c.shard.count - 1);
+  read(root, "resume", c.resume);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -586,9 +614,9 @@ JobConfig load_config(const fs::path& path) {
 JobConfig parse_config(const json& document, const fs::path& base_dir) {
   const fs::path base = fs::absolute(base_dir).lexically_normal();
   JobConfig c;
-  const Section root(
-      &document, "",
-      {"job", "input", "template", "output", "massage", "threads", "frames_in_flight"});
+  const Section root(&document, "",
+                     {"job", "input", "template", "output", "massage", "threads",
+                      "frames_in_flight", "checks", "shard", "resume"});
   root.require("job", "the kind of job: \"sequence\"");
   read(root, "job", c.job, kJobs);
 
@@ -616,15 +644,17 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
                                  "frames is " + std::to_string(c.input.synthetic->frames) + ")");
   }
 
-  const Section output(
-      &root.require("output", "an object with \"dir\", the output folder"), "output",
-      {"dir", "format", "gltf", "per_triangle_csv", "timings", "colored", "checker", "iterations"});
+  const Section output(&root.require("output", "an object with \"dir\", the output folder"),
+                       "output",
+                       {"dir", "format", "gltf", "per_triangle_csv", "timings", "colored",
+                        "checker", "iterations", "on_failure"});
   output.require("dir", "the folder the results are written to");
   c.output.dir = read_path(output, "dir", base);
   read(output, "format", c.output.format, kFormats);
   read(output, "per_triangle_csv", c.output.per_triangle_csv);
   read(output, "timings", c.output.timings);
   read_visual_outputs(output, c.output);
+  read(output, "on_failure", c.output.on_failure, kOnFailure);
   if (c.output.format == OutputFormat::Gltf && !c.input.gltf)
     fail(output.path("format"),
          "\"gltf\" needs a glTF input (input.gltf), whose mesh, materials and textures the "
@@ -645,6 +675,7 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
       c.massage);
   read(root, "threads", c.threads, 0, 4096);
   read(root, "frames_in_flight", c.frames_in_flight, 0, 1000000);
+  read_run_controls(root, c);
   return c;
 }
 
@@ -680,7 +711,8 @@ json to_json(const JobConfig& c) {
   j["output"] = {{"dir", c.output.dir.string()},
                  {"format", name_of(c.output.format, kFormats)},
                  {"per_triangle_csv", c.output.per_triangle_csv},
-                 {"timings", c.output.timings}};
+                 {"timings", c.output.timings},
+                 {"on_failure", name_of(c.output.on_failure, kOnFailure)}};
   visual_outputs_to_json(c.output, j["output"]);
   if (c.output.format == OutputFormat::Gltf)
     j["output"]["gltf"] = {{"frames_per_mesh", c.output.gltf.frames_per_mesh},
@@ -703,6 +735,13 @@ json to_json(const JobConfig& c) {
                   {"pinned", m.pinned}};
   j["threads"] = c.threads;
   j["frames_in_flight"] = c.frames_in_flight;
+  const FrameChecks& checks = c.checks;
+  j["checks"] = {{"max_folded_triangles",
+                  checks.max_folded_triangles ? json(*checks.max_folded_triangles) : json(nullptr)},
+                 {"max_folded_fraction",
+                  checks.max_folded_fraction ? json(*checks.max_folded_fraction) : json(nullptr)}};
+  j["shard"] = {{"index", c.shard.index}, {"count", c.shard.count}};
+  j["resume"] = c.resume;
   return j;
 }
 
@@ -739,6 +778,32 @@ FrameRange parse_frame_range(std::string_view text, std::string_view what) {
   if (r.step < 1) fail(name, "STEP must be >= 1, got \"" + std::string(text) + "\"");
   if (r.stop && *r.stop < r.start) fail(name, "B must be >= A, got \"" + std::string(text) + "\"");
   return r;
+}
+
+ShardConfig parse_shard(std::string_view text, std::string_view what) {
+  const std::string name(what);
+  const auto bad = [&](const std::string& why) {
+    fail(name, why + ", got \"" + std::string(text) + "\"");
+  };
+  const size_t slash = text.find('/');
+  const auto number = [&](std::string_view s) {
+    if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string_view::npos)
+      bad("expected I/N: shard I (0-based) of N, e.g. 0/4");
+    return std::stoi(std::string(s));
+  };
+  if (slash == std::string_view::npos) bad("expected I/N: shard I (0-based) of N, e.g. 0/4");
+  ShardConfig shard;
+  shard.index = number(text.substr(0, slash));
+  shard.count = number(text.substr(slash + 1));
+  if (shard.count < 1 || shard.count > 100000) bad("N must be in [1, 100000]");
+  if (shard.index >= shard.count)
+    bad("I is 0-based and must be below N (like a Slurm array task id or a Kubernetes "
+        "JOB_COMPLETION_INDEX)");
+  return shard;
+}
+
+std::string format_shard(const ShardConfig& shard) {
+  return std::to_string(shard.index) + "/" + std::to_string(shard.count);
 }
 
 std::string format_frame_range(const FrameRange& range) {

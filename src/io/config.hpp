@@ -72,6 +72,12 @@ enum class OutputFormat {
   Gltf,  ///< "gltf": sequence.glb, one morph target per frame (glTF input only)
 };
 
+/// What a frame that fails its numerical checks gets as output ("output.on_failure").
+enum class OnFailure {
+  CopyInput,  ///< "copy_input": its input, unchanged (an OBJ frame byte for byte)
+  Skip,       ///< "skip": nothing (no frame file, no distortion table; left out of sequence.glb)
+};
+
 struct OutputConfig {
   std::filesystem::path dir;                ///< "dir": output folder (required)
   OutputFormat format = OutputFormat::Obj;  ///< "format": "obj" or "gltf"
@@ -80,9 +86,33 @@ struct OutputConfig {
   /// "timings": run times in summary.csv and report.json; false writes 0 seconds, so that a run
   /// reproduces every output byte.
   bool timings = true;
+  OnFailure on_failure = OnFailure::CopyInput;  ///< "on_failure": "copy_input" or "skip"
   ColoredOutputOptions colored;    ///< "colored": shear as coloured PLY meshes, before and after
   CheckerOutputOptions checker;    ///< "checker": frames with a checkerboard texture (OBJ+MTL+PNG)
   IterationLogOptions iterations;  ///< "iterations": iterations.csv
+};
+
+/// "checks": when an optimized frame fails, besides a failed solve and non-finite positions
+/// (which always fail it). A folded triangle is an output triangle whose normal opposes the same
+/// triangle's normal in the input frame; a frame fails when its folded triangles exceed either
+/// limit. Real captures give a few per frame at most (README, "Failed frames").
+struct FrameChecks {
+  /// "max_folded_triangles": the most folded triangles a frame may have, >= 0; null: no limit.
+  std::optional<int> max_folded_triangles;
+  /// "max_folded_fraction": the most folded triangles a frame may have, as a fraction of its
+  /// triangles, in [0, 1]; null: no limit.
+  std::optional<double> max_folded_fraction = 0.005;
+};
+
+/// "shard": the part of the selected frames this process runs, for job arrays on a cluster: the
+/// selected frames are cut into `count` contiguous blocks of (nearly) equal size, and shard `index`
+/// runs block `index`. Its summary and report are named by shard (summary.shard-I-of-N.csv,
+/// report.shard-I-of-N.json); `seqmassage merge` combines the shards.
+struct ShardConfig {
+  /// "index": 0-based, < count (a Slurm array task id, a Kubernetes completion index)
+  int index = 0;
+  int count = 1;  ///< "count": number of shards, >= 1; 1 = not sharded
+  bool sharded() const { return count > 1; }
 };
 
 struct JobConfig {
@@ -93,6 +123,11 @@ struct JobConfig {
   MassageOptions massage;           ///< "massage": every key of MassageOptions
   int threads = 0;                  ///< "threads": worker threads, 0 = one per core
   int frames_in_flight = 0;         ///< "frames_in_flight": frames held at once, 0 = 2 × threads
+  FrameChecks checks;               ///< "checks"
+  ShardConfig shard;                ///< "shard"
+  /// "resume": skip the frames whose record (records/<frame>.json) shows that their outputs are
+  /// complete and were made from the same config, template and input.
+  bool resume = false;
 };
 
 /// Reads and checks a config file; relative paths resolve against the file's folder. Throws
@@ -116,6 +151,12 @@ nlohmann::json to_json(const JobConfig& config);
 /// Parses "A:B[:STEP]" (B may be empty: to the end) into a range. Throws ConfigError naming
 /// `what` (e.g. "--frames").
 FrameRange parse_frame_range(std::string_view text, std::string_view what);
+
+/// Parses "I/N" (0 <= I < N) into a shard. Throws ConfigError naming `what` (e.g. "--shard").
+ShardConfig parse_shard(std::string_view text, std::string_view what);
+
+/// "I/N".
+std::string format_shard(const ShardConfig& shard);
 
 /// The range as "A:B:STEP" ("A::STEP" without a stop).
 std::string format_frame_range(const FrameRange& range);

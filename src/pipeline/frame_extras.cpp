@@ -9,6 +9,7 @@
 #include "io/png.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/sequence_job.hpp"
+#include "pipeline/shard.hpp"
 #include "pipeline/shear_ply.hpp"
 
 namespace sm {
@@ -46,7 +47,7 @@ class Run : public ExtrasRun {
         templ_(templ),
         template_source_(std::move(template_source)),
         uv_(std::move(uv)),
-        csv_(iteration_columns()) {}
+        header_(CsvWriter(iteration_columns()).str()) {}
 
   ExtraFrame encode(const FrameOutcome& o) const override {
     const OutputConfig& out = config_.output;
@@ -89,6 +90,9 @@ class Run : public ExtrasRun {
                                     *o.result, x.warning);
       x.iterations = iteration_rows(*o.result, summarize_distortion(*o.shear_before),
                                     summarize_distortion(*o.shear_after), shear);
+      CsvWriter rows(iteration_columns());
+      append_iteration_rows(rows, x.frame, x.file, x.iterations);
+      x.iterations_csv = rows.str().substr(header_.size());
     }
     return x;
   }
@@ -107,10 +111,10 @@ class Run : public ExtrasRun {
       }
       write_file_atomic(dir / path, bytes);
     }
-    if (!x.iterations.empty()) {
-      append_iteration_rows(csv_, x.frame, x.file, x.iterations);
-    }
+    rows_ += x.iterations_csv;
   }
+
+  void keep(const std::string& iterations_csv) override { rows_ += iterations_csv; }
 
   json finish() override {
     const OutputConfig& out = config_.output;
@@ -127,8 +131,9 @@ class Run : public ExtrasRun {
                       {"uv", uv_->source},
                       {"uv_template", template_source_}};
     if (out.iterations.enabled) {
-      write_file_atomic(out.dir / "iterations.csv", csv_.str());
-      r["iterations"] = "iterations.csv";
+      const std::string name = iterations_file_name(config_.shard);
+      write_file_atomic(out.dir / name, header_ + rows_);
+      r["iterations"] = name;
     }
     return r;
   }
@@ -139,7 +144,8 @@ class Run : public ExtrasRun {
   TriMesh templ_;
   std::string template_source_;
   std::optional<CornerUv> uv_;
-  CsvWriter csv_;
+  std::string header_;  // of iterations.csv
+  std::string rows_;    // its rows, frame by frame
   bool texture_written_ = false;
 };
 

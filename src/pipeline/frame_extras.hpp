@@ -41,6 +41,7 @@ struct ExtraFrame {
   int frame = 0;
   std::string file;                      ///< the frame's name (iterations.csv `file`)
   std::vector<IterationRow> iterations;  ///< empty when the frame is not logged
+  std::string iterations_csv;            ///< `iterations` as iterations.csv rows (no header)
   std::string warning;
 };
 
@@ -53,7 +54,11 @@ class ExtrasRun {
   /// Writes a frame's files (and the checker texture with the first checker frame). Called in
   /// frame order, one thread at a time.
   virtual void write(const ExtraFrame& frame) = 0;
-  /// Writes iterations.csv (the frames written); returns report.json "outputs" entries.
+  /// A frame resumed from its record: its files are in place; its iterations.csv rows (as
+  /// ExtraFrame::iterations_csv) are added. Called in frame order like write().
+  virtual void keep(const std::string& iterations_csv) = 0;
+  /// Writes iterations.csv (iterations.shard-I-of-N.csv for a shard) of the frames written and
+  /// kept; returns report.json "outputs" entries.
   virtual nlohmann::json finish() = 0;
 };
 

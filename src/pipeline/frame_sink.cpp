@@ -1,7 +1,5 @@
 #include "pipeline/frame_sink.hpp"
 
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -16,32 +14,48 @@ using json = nlohmann::json;
 
 namespace {
 
-// ---------------------------------------------------------------------------------------------
-// OBJ files: frames/<frame name>, written as they come.
+// positions/<frame name>.bin, relative to output.dir: a frame's corrected positions for the GLB.
+fs::path positions_file(const std::string& frame_name) {
+  return fs::path("positions") / fs::path(frame_name).replace_extension(".bin");
+}
 
-class ObjWriter : public FrameWriter {
+// Writes each frame to its own file under output.dir, atomically; remembers the frames that have
+// one (written or kept), in order.
+class FileWriter : public FrameWriter {
  public:
-  ObjWriter(fs::path dir, std::shared_ptr<const FrameSource> source)
-      : dir_(std::move(dir)), source_(std::move(source)) {}
+  FileWriter(fs::path dir, const FrameSink& sink) : dir_(std::move(dir)), sink_(sink) {}
   void write(int index, const std::string& bytes) override {
-    write_file_atomic(dir_ / source_->name(index), bytes);
+    write_file_atomic(dir_ / sink_.output_file(index), bytes);
+    frames_.push_back(index);
+  }
+  void keep(int index) override { frames_.push_back(index); }
+  void skip(int index) override {
+    std::error_code ec;
+    fs::remove(dir_ / sink_.output_file(index), ec);
   }
   std::vector<std::string> finish() override { return {}; }
 
- private:
+ protected:
   fs::path dir_;
-  std::shared_ptr<const FrameSource> source_;
+  const FrameSink& sink_;
+  std::vector<int> frames_;
 };
+
+// ---------------------------------------------------------------------------------------------
+// OBJ files: frames/<frame name>, written as they come.
 
 class ObjSink : public FrameSink {
  public:
   ObjSink(const fs::path& out, std::shared_ptr<const FrameSource> source)
-      : dir_(out / "frames"), source_(std::move(source)) {}
+      : out_(out), source_(std::move(source)) {}
 
   std::vector<fs::path> files(const std::vector<int>& frames) const override {
     std::vector<fs::path> out;
-    for (int i : frames) out.push_back(dir_ / source_->name(i));
+    for (int i : frames) out.push_back(out_ / output_file(i));
     return out;
+  }
+  fs::path output_file(int index) const override {
+    return fs::path("frames") / source_->name(index);
   }
   std::string describe(const std::vector<int>& frames) const override {
     return "  frames/<name>.obj (" + std::to_string(frames.size()) + " files)\n";
@@ -52,116 +66,71 @@ class ObjSink : public FrameSink {
     return format_obj(*input.obj, V);
   }
   std::unique_ptr<FrameWriter> start() const override {
-    return std::make_unique<ObjWriter>(dir_, source_);
+    return std::make_unique<FileWriter>(out_, *this);
   }
 
  private:
-  fs::path dir_;
+  fs::path out_;
   std::shared_ptr<const FrameSource> source_;
 };
 
 // ---------------------------------------------------------------------------------------------
-// One GLB. The corrected frames are appended to a temporary spool file in frame order (exact
-// doubles, 24 bytes per welded vertex and frame) and read back one at a time by the GLB writer
-// at the end, so that memory holds the frames in flight and the GLB being assembled, never all
-// the frames as well.
+// One GLB, assembled at the end from positions/<frame>.bin (exact doubles, 24 bytes per welded
+// vertex and frame), read back one at a time by the GLB writer: memory holds the frames in
+// flight and the GLB being assembled, never all the frames as well. The positions files stay:
+// they are what --resume and `seqmassage merge` rebuild the GLB from.
 
-class GlbWriter : public FrameWriter {
+class GlbWriter : public FileWriter {
  public:
-  GlbWriter(fs::path glb, std::shared_ptr<const FrameSource> source,
-            const GltfWriteOptions& options)
-      : glb_(std::move(glb)),
-        source_(std::move(source)),
-        sequence_(*source_->gltf()),
-        options_(options) {
-    spool_ = glb_;
-    spool_ += ".frames." + std::to_string(::getpid()) + std::string(kTempSuffix);
-  }
-  ~GlbWriter() override {
-    std::error_code ec;
-    if (out_.is_open()) out_.close();
-    fs::remove(spool_, ec);
-  }
-
-  void write(int index, const std::string& bytes) override {
-    if (!out_.is_open()) {
-      std::error_code ec;
-      fs::create_directories(spool_.parent_path(), ec);
-      out_.open(spool_, std::ios::binary | std::ios::trunc);
-      if (!out_) fail("cannot create");
-    }
-    out_.write(bytes.data(), std::streamsize(bytes.size()));
-    if (!out_) fail("cannot write");
-    frames_.push_back(index);
-  }
+  GlbWriter(const JobConfig& config, const FrameSink& sink,
+            std::shared_ptr<const FrameSource> source)
+      : FileWriter(config.output.dir, sink), config_(config), source_(std::move(source)) {}
 
   std::vector<std::string> finish() override {
-    if (frames_.empty()) {
-      return {"no frame was processed, so " + glb_.filename().string() + " was not written"};
-    }
-    out_.close();
-    if (!out_) fail("cannot write");
-    GltfSequence written = sequence_;  // the frames done, at their times
-    written.times.clear();
-    for (int i : frames_) written.times.push_back(sequence_.times[size_t(i)]);
-    std::ifstream in(spool_, std::ios::binary);
-    if (!in) fail("cannot open");
-    const Eigen::Index n = sequence_.rest.num_vertices();
-    int next = 0;
-    write_gltf_sequence(
-        glb_, written,
-        [&](int k) {
-          if (k != next++) throw std::logic_error("GlbWriter: frames read out of order");
-          Positions V(n, 3);
-          in.read(reinterpret_cast<char*>(V.data()), std::streamsize(V.size() * sizeof(double)));
-          if (!in) fail("cannot read back");
-          return V;
-        },
-        options_);
-    return {};
+    if (config_.shard.sharded()) return {};  // `seqmassage merge` assembles it
+    return assemble_sequence_glb(config_, *source_, frames_);
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) const {
-    throw IoError(what + " the temporary frame file '" + spool_.string() +
-                  "': " + std::strerror(errno ? errno : EIO));
-  }
-
-  fs::path glb_, spool_;
-  std::shared_ptr<const FrameSource> source_;  // keeps sequence_ alive
-  const GltfSequence& sequence_;
-  GltfWriteOptions options_;
-  std::ofstream out_;
-  std::vector<int> frames_;
+  const JobConfig& config_;
+  std::shared_ptr<const FrameSource> source_;
 };
 
 class GlbSink : public FrameSink {
  public:
-  GlbSink(const fs::path& out, std::shared_ptr<const FrameSource> source,
-          const GltfWriteOptions& options)
-      : glb_(out / "sequence.glb"), source_(std::move(source)), options_(options) {}
+  GlbSink(const JobConfig& config, std::shared_ptr<const FrameSource> source)
+      : config_(config), source_(std::move(source)) {}
 
-  std::vector<fs::path> files(const std::vector<int>&) const override { return {glb_}; }
+  std::vector<fs::path> files(const std::vector<int>& frames) const override {
+    std::vector<fs::path> out;
+    for (int i : frames) out.push_back(config_.output.dir / output_file(i));
+    out.push_back(config_.output.dir / "sequence.glb");
+    return out;
+  }
+  fs::path output_file(int index) const override { return positions_file(source_->name(index)); }
   std::string describe(const std::vector<int>& frames) const override {
-    const int per_mesh = std::max(1, options_.frames_per_mesh);
+    const int per_mesh = std::max(1, config_.output.gltf.frames_per_mesh);
     const size_t meshes = (frames.size() + size_t(per_mesh) - 1) / size_t(per_mesh);
-    return "  sequence.glb (" + std::to_string(frames.size()) +
+    std::string text = "  positions/<name>.bin (" + std::to_string(frames.size()) +
+                       " files: the corrected positions of each frame)\n";
+    if (config_.shard.sharded())
+      return text + "  sequence.glb: assembled from every shard's positions by seqmassage merge\n";
+    return text + "  sequence.glb (" + std::to_string(frames.size()) +
            " frames, one morph target each, over " + std::to_string(meshes) + " mesh" +
            (meshes == 1 ? "" : "es") + "; normals " +
-           (options_.normals ? "turned with the surface" : "left to the viewer") + ")\n";
+           (config_.output.gltf.normals ? "turned with the surface" : "left to the viewer") + ")\n";
   }
-  json report() const override { return {{"gltf", glb_.filename().string()}}; }
+  json report() const override { return {{"gltf", "sequence.glb"}, {"positions", "positions/"}}; }
   std::string encode(const SourceFrame&, const Positions& V, bool) const override {
     return std::string(reinterpret_cast<const char*>(V.data()), size_t(V.size()) * sizeof(double));
   }
   std::unique_ptr<FrameWriter> start() const override {
-    return std::make_unique<GlbWriter>(glb_, source_, options_);
+    return std::make_unique<GlbWriter>(config_, *this, source_);
   }
 
  private:
-  fs::path glb_;
+  const JobConfig config_;
   std::shared_ptr<const FrameSource> source_;
-  GltfWriteOptions options_;
 };
 
 }  // namespace
@@ -174,9 +143,38 @@ std::shared_ptr<const FrameSink> make_frame_sink(const JobConfig& config,
     case OutputFormat::Gltf:
       if (!source->gltf())
         throw ConfigError("output.format: \"gltf\" needs a glTF input (input.gltf)");
-      return std::make_shared<GlbSink>(config.output.dir, std::move(source), config.output.gltf);
+      return std::make_shared<GlbSink>(config, std::move(source));
   }
   throw std::logic_error("make_frame_sink: unknown output format");
+}
+
+std::vector<std::string> assemble_sequence_glb(const JobConfig& config, const FrameSource& source,
+                                               const std::vector<int>& frames) {
+  const fs::path glb = config.output.dir / "sequence.glb";
+  if (frames.empty())
+    return {"no frame was processed, so " + glb.filename().string() + " was not written"};
+  const GltfSequence& sequence = *source.gltf();
+  GltfSequence written = sequence;  // the frames done, at their times
+  written.times.clear();
+  for (int i : frames) written.times.push_back(sequence.times[size_t(i)]);
+  const Eigen::Index n = sequence.rest.num_vertices();
+  int next = 0;
+  write_gltf_sequence(
+      glb, written,
+      [&](int k) {
+        if (k != next++) throw std::logic_error("assemble_sequence_glb: frames read out of order");
+        const fs::path file = config.output.dir / positions_file(source.name(frames[size_t(k)]));
+        const std::string bytes = read_file(file);
+        if (bytes.size() != size_t(n) * 3 * sizeof(double))
+          throw IoError("'" + file.string() + "': " + std::to_string(bytes.size()) +
+                        " bytes, but the corrected positions of " + std::to_string(n) +
+                        " vertices take " + std::to_string(size_t(n) * 3 * sizeof(double)));
+        Positions V(n, 3);
+        std::memcpy(V.data(), bytes.data(), bytes.size());
+        return V;
+      },
+      config.output.gltf);
+  return {};
 }
 
 }  // namespace sm

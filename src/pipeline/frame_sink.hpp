@@ -1,8 +1,9 @@
 #pragma once
 /// Where a sequence job's corrected frames go: one OBJ file per frame (frames/<frame name>), or
-/// one GLB that plays the whole sequence (sequence.glb, glTF input only). Frames are encoded in
-/// parallel, then handed to the sink's writer in frame order; the writer completes its output
-/// when the run ends.
+/// one GLB that plays the whole sequence (sequence.glb, glTF input only), assembled from one
+/// positions file per frame (positions/<frame>.bin). Frames are encoded in parallel, then handed to
+/// the sink's writer in frame order, each into its own file (atomically); the writer completes a
+/// whole-sequence output when the run ends (or `seqmassage merge` does, for a sharded run).
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -15,13 +16,20 @@
 
 namespace sm {
 
-/// The state of one run's output.
+/// The state of one run's output. Its methods are called in frame order, from one thread at a
+/// time, once per frame of the run.
 class FrameWriter {
  public:
   virtual ~FrameWriter() = default;
-  /// Stores frame `index`'s encoded bytes. Called in frame order, from one thread at a time.
+  /// Writes frame `index`'s encoded bytes to its file (FrameSink::output_file), atomically.
   virtual void write(int index, const std::string& bytes) = 0;
-  /// Completes the output from the frames written (all of them, or those done before an
+  /// Frame `index` kept its file from an earlier run (resumed): nothing is written, but a
+  /// whole-sequence output includes it.
+  virtual void keep(int index) = 0;
+  /// Frame `index` has no output (it failed, with "on_failure": "skip"): removes its file left by
+  /// an earlier run, if any.
+  virtual void skip(int index) = 0;
+  /// Completes the output from the frames written and kept (all of them, or those done before an
   /// interruption); returns warnings. Throws IoError when a file cannot be written.
   virtual std::vector<std::string> finish() = 0;
 };
@@ -31,6 +39,9 @@ class FrameSink {
   virtual ~FrameSink() = default;
   /// The files a run of frames `frames` writes (for the overwrite check).
   virtual std::vector<std::filesystem::path> files(const std::vector<int>& frames) const = 0;
+  /// The file that frame `index`'s encoded bytes go to, relative to output.dir
+  /// ("frames/frame_0007.obj", "positions/frame_0007.bin").
+  virtual std::filesystem::path output_file(int index) const = 0;
   /// Plan lines, each "  <file>: <what>\n".
   virtual std::string describe(const std::vector<int>& frames) const = 0;
   /// report.json "outputs" entries (relative to output.dir).
@@ -45,11 +56,20 @@ class FrameSink {
 
 /// The sink of config.output.format for frames from `source`: "obj" writes
 /// frames/<source.name(i)> (an OBJ input's unchanged frame byte for byte, other frames with the
-/// input's statements and new positions); "gltf" writes sequence.glb (see write_gltf_sequence)
-/// from the corrected frames, which the run spools to a temporary file in frame order so that
-/// memory does not hold them (only the GLB being assembled). Throws ConfigError for "gltf" with a
-/// source that is not a glTF animation.
+/// input's statements and new positions); "gltf" writes each frame's corrected welded positions
+/// to positions/<frame>.bin (exact little-endian doubles, n×3 row-major: 24 bytes per vertex),
+/// from which sequence.glb is assembled when the run ends (assemble_sequence_glb), so that memory
+/// holds the frames in flight and the GLB being assembled, never all frames as well. A shard of a
+/// sharded run (config.shard) writes the positions only; `seqmassage merge` assembles the GLB.
+/// Throws ConfigError for "gltf" with a source that is not a glTF animation.
 std::shared_ptr<const FrameSink> make_frame_sink(const JobConfig& config,
                                                  std::shared_ptr<const FrameSource> source);
+
+/// Writes output.dir/sequence.glb (see write_gltf_sequence) of the frames `frames` (in order) of
+/// `source`, a glTF animation, from their positions files. Returns warnings (none, or that no frame
+/// was given, so nothing was written). Throws IoError when a positions file is missing or has
+/// the wrong size, or the GLB cannot be written.
+std::vector<std::string> assemble_sequence_glb(const JobConfig& config, const FrameSource& source,
+                                               const std::vector<int>& frames);
 
 }  // namespace sm

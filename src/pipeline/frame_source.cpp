@@ -1,11 +1,13 @@
 #include "pipeline/frame_source.hpp"
 
 #include <cstdio>
+#include <mutex>
 
 #include "io/atomic_file.hpp"
 #include "io/frame_folder.hpp"
 #include "io/gltf_obj.hpp"
 #include "io/gltf_scene.hpp"
+#include "io/sha256.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/synthetic.hpp"
 
@@ -163,6 +165,17 @@ class GltfSource : public FrameSource {
     return out;
   }
   TriMesh template_frame(int i) const override { return decode(i, {}).mesh; }
+  std::string input_hash(int i, const std::string&) const override {
+    std::call_once(asset_hash_once_, [&] {
+      Sha256 hash;
+      for (const fs::path& file : files({})) {
+        const std::string part = file.filename().string() + " " + sha256_file(file) + "\n";
+        hash.update(part);
+      }
+      asset_hash_ = hash.hex();
+    });
+    return sha256_hex(asset_hash_ + " frame " + std::to_string(i));
+  }
   SourceFrame decode(int i, std::string) const override {
     const WeldedFrame f = evaluate_gltf_frame(sequence_, i);
     for (Eigen::Index v = 0; v < f.V.rows(); ++v) {
@@ -202,14 +215,29 @@ class GltfSource : public FrameSource {
   GltfInputOptions options_;
   GltfSequence sequence_;
   std::shared_ptr<const ObjFile> layout_;
+  mutable std::once_flag asset_hash_once_;
+  mutable std::string asset_hash_;  // of the .glb/.gltf and the files it refers to
 };
 
 }  // namespace
 
-std::string FrameSource::label(int i) const {
-  std::string text = "frame " + std::to_string(i) + " (" + name(i);
-  if (const auto t = time(i)) text += ", t = " + short_number(*t) + " s";
+std::string frame_label(int i, const std::string& name, std::optional<double> time) {
+  std::string text = "frame " + std::to_string(i) + " (" + name;
+  if (time) text += ", t = " + short_number(*time) + " s";
   return text + ")";
+}
+
+std::string FrameSource::label(int i) const {
+  return frame_label(i, name(i), time(i));
+}
+
+std::string FrameSource::input_hash(int i, const std::string& fetched) const {
+  if (!fetched.empty()) return sha256_hex(fetched);
+  const TriMesh mesh = decode(i, fetched).mesh;  // no file of its own: its content
+  Sha256 hash;
+  hash.update(mesh.V.data(), size_t(mesh.V.size()) * sizeof(double));
+  hash.update(mesh.F.data(), size_t(mesh.F.size()) * sizeof(int));
+  return hash.hex();
 }
 
 TriMesh FrameSource::template_frame(int i) const {

@@ -60,6 +60,10 @@ class FrameSource {
   /// The parallel part: frame i from what fetch returned. Thread-safe. Throws InputError naming
   /// the frame and the element at fault.
   virtual SourceFrame decode(int i, std::string bytes) const = 0;
+  /// SHA-256 of everything frame i is made from, given what fetch returned: the bytes of its
+  /// file, or for a glTF frame the asset's files with the frame's index. Thread-safe. A frame
+  /// record keeps it, so that --resume redoes a frame whose input changed.
+  virtual std::string input_hash(int i, const std::string& fetched) const;
 
   /// Where the clean frames of a generated sequence are written, empty if there are none.
   virtual std::filesystem::path ground_truth_dir() const { return {}; }
@@ -75,6 +79,10 @@ class FrameSource {
 /// welded and checked here; other sources list or generate nothing yet. Throws like the loaders:
 /// IoError, InputError naming the file and element, ConfigError for invalid values.
 std::shared_ptr<const FrameSource> make_frame_source(const JobConfig& config);
+
+/// "frame 7 (frame_0007.obj)", with ", t = 0.25 s" for a frame with a time: how messages name a
+/// frame (FrameSource::label).
+std::string frame_label(int i, const std::string& name, std::optional<double> time);
 
 /// "frame_0007.obj": frame i's name among `count` frames (at least 4 digits).
 std::string numbered_frame_name(int i, int count);

@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "io/csv.hpp"
+#include "mesh/errors.hpp"
+#include "pipeline/shard.hpp"
 
 #ifndef SEQMASSAGE_VERSION
 #error "SEQMASSAGE_VERSION must be defined by the build"
@@ -42,7 +44,8 @@ std::vector<std::string> summary_columns() {
           "seconds",
           "status",
           "failure",
-          "time"};
+          "time",
+          "folded_triangles"};
 }
 
 std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool timings) {
@@ -54,7 +57,11 @@ std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool tim
     csv.cell(f.out_to_in.max).cell(f.out_to_in.rms).cell(f.in_to_out.max).cell(f.in_to_out.rms);
     csv.cell(f.iterations).cell(timings ? f.seconds : 0.0);
     csv.cell(status_name(f.status)).cell(f.failure);
-    if (f.time) csv.cell(*f.time);
+    if (f.time)
+      csv.cell(*f.time);
+    else
+      csv.cell("");
+    csv.cell(f.folded_triangles);
     csv.end_row();
   }
   return csv.str();
@@ -85,23 +92,92 @@ json version_info() {
           {"compiler", compiler}};
 }
 
-json make_report(const SequencePlan& plan, const SequenceResult& result) {
-  const JobConfig& c = plan.config;
-  json r;
-  r["versions"] = version_info();
-  r["config"] = to_json(c);
-  r["input"] = plan.source->report();
-  r["template"] = {{"source", plan.template_source},
-                   {"vertices", plan.templ.num_vertices()},
-                   {"triangles", plan.templ.num_triangles()},
-                   {"weight_fallback_vertices", plan.massager->weights().fallback_vertices}};
+void append_frame_warnings(const FrameSummary& f, OnFailure on_failure,
+                           std::vector<std::string>& warnings) {
+  const std::string who = frame_label(f.frame, f.file, f.time);
+  for (const std::string& warning : f.warnings) warnings.push_back(who + ": " + warning);
+  if (f.status == FrameStatus::Failed)
+    warnings.push_back(who + " failed, " +
+                       (on_failure == OnFailure::Skip ? "not written: " : "written unchanged: ") +
+                       f.failure);
+  if (f.folded_triangles > 0)
+    warnings.push_back(who + ": " + std::to_string(f.folded_triangles) +
+                       " triangles folded over (normal opposed to the input frame's)");
+}
 
-  int optimized = 0, unchanged = 0, iterations = 0;
+ReportHeader report_header(const SequencePlan& plan) {
+  const JobConfig& c = plan.config;
+  ReportHeader h;
+  h.versions = version_info();
+  JobConfig job = c;
+  job.shard = ShardConfig{};
+  job.resume = false;
+  h.config = to_json(job);
+  h.input = plan.source->report();
+  h.templ = {{"source", plan.template_source},
+             {"vertices", plan.templ.num_vertices()},
+             {"triangles", plan.templ.num_triangles()},
+             {"weight_fallback_vertices", plan.massager->weights().fallback_vertices},
+             {"hash", plan.template_hash}};
+  h.outputs = {{"dir", c.output.dir.string()},
+               {"distortion", c.output.per_triangle_csv ? json("distortion/") : json(nullptr)},
+               {"records", "records/"},
+               {"summary", "summary.csv"}};
+  h.outputs.update(plan.sink->report());
+  h.frames_listed = plan.source->size();
+  h.frames_selected = static_cast<int>(plan.selected.size());
+  h.ground_truth = plan.source->ground_truth_dir().string();
+  h.config_hash = plan.config_hash;
+  h.warnings = plan.warnings;
+  return h;
+}
+
+ReportHeader report_header_from_json(const json& r) {
+  const auto need = [&](const json& j, const char* key, const char* where) -> const json& {
+    if (!j.is_object() || !j.contains(key))
+      throw InputError(std::string(where) + key + ": missing");
+    return j.at(key);
+  };
+  try {
+    ReportHeader h;
+    h.versions = need(r, "versions", "");
+    h.config = need(r, "config", "");
+    h.input = need(r, "input", "");
+    h.templ = need(r, "template", "");
+    h.outputs = need(r, "outputs", "");
+    h.outputs["summary"] = "summary.csv";  // a shard's own names are the run's
+    if (h.outputs.contains("iterations")) h.outputs["iterations"] = "iterations.csv";
+    const json& totals = need(r, "totals", "");
+    h.frames_listed = need(totals, "frames_listed", "totals.").get<int>();
+    h.frames_selected = need(totals, "frames_selected", "totals.").get<int>();
+    if (r.contains("ground_truth"))
+      h.ground_truth = need(r["ground_truth"], "folder", "ground_truth.").get<std::string>();
+    h.config_hash = need(need(r, "hashes", ""), "config", "hashes.").get<std::string>();
+    h.warnings =
+        need(need(r, "shard", ""), "plan_warnings", "shard.").get<std::vector<std::string>>();
+    return h;
+  } catch (const json::exception& e) {
+    throw InputError(std::string("wrong type: ") + e.what());
+  }
+}
+
+json make_report(const ReportHeader& header, const std::vector<FrameSummary>& frames,
+                 const std::vector<std::string>& warnings, bool interrupted, const json& run) {
+  json r;
+  r["versions"] = header.versions;
+  r["config"] = header.config;
+  r["input"] = header.input;
+  r["template"] = header.templ;
+  r["hashes"] = {{"config", header.config_hash},
+                 {"template", header.templ.value("hash", std::string())}};
+
+  int optimized = 0, unchanged = 0, failed = 0, iterations = 0;
   double mean_before = 0, mean_after = 0, p95_before = 0, p95_after = 0;
   double max_before = 0, max_after = 0, out_to_in = 0, in_to_out = 0;
-  for (const FrameSummary& f : result.frames) {
+  for (const FrameSummary& f : frames) {
     optimized += f.status == FrameStatus::Optimized;
     unchanged += f.status == FrameStatus::Template;
+    failed += f.status == FrameStatus::Failed;
     iterations += f.iterations;
     mean_before += f.shear_before.mean;
     mean_after += f.shear_after.mean;
@@ -112,13 +188,13 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
     out_to_in = std::max(out_to_in, f.out_to_in.max);
     in_to_out = std::max(in_to_out, f.in_to_out.max);
   }
-  const double n = std::max<size_t>(1, result.frames.size());
-  r["totals"] = {{"frames_listed", plan.source->size()},
-                 {"frames_selected", plan.selected.size()},
-                 {"frames_written", result.frames.size()},
+  const double n = std::max<size_t>(1, frames.size());
+  r["totals"] = {{"frames_listed", header.frames_listed},
+                 {"frames_selected", header.frames_selected},
+                 {"frames_written", frames.size()},
                  {"optimized", optimized},
                  {"template_unchanged", unchanged},
-                 {"failed", result.failed},
+                 {"failed", failed},
                  {"iterations", iterations},
                  {"shear_before",
                   {{"max", number(max_before)},
@@ -131,48 +207,69 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
                  {"dist_out_to_in_max", number(out_to_in)},
                  {"dist_in_to_out_max", number(in_to_out)},
                  {"hausdorff_max", number(std::max(out_to_in, in_to_out))}};
-  r["interrupted"] = result.interrupted;
+  r["interrupted"] = interrupted;
 
-  if (const std::filesystem::path truth = plan.source->ground_truth_dir(); !truth.empty()) {
-    json frames = json::array();
+  if (!header.ground_truth.empty()) {
+    json list = json::array();
     double before = 0, after = 0;
-    for (const FrameSummary& f : result.frames) {
+    for (const FrameSummary& f : frames) {
       if (!f.ground_truth) continue;
       const GroundTruthError& g = *f.ground_truth;
       before += g.mean_before;
       after += g.mean_after;
-      frames.push_back({{"frame", f.frame},
-                        {"mean_before", number(g.mean_before)},
-                        {"max_before", number(g.max_before)},
-                        {"mean_after", number(g.mean_after)},
-                        {"max_after", number(g.max_after)}});
+      list.push_back({{"frame", f.frame},
+                      {"mean_before", number(g.mean_before)},
+                      {"max_before", number(g.max_before)},
+                      {"mean_after", number(g.mean_after)},
+                      {"max_after", number(g.max_after)}});
     }
     r["ground_truth"] = {
-        {"folder", truth.string()},
+        {"folder", header.ground_truth},
         {"unit", "mean edge length of the template"},
         {"what", "distance of every vertex to its position on the clean (undrifted) frame"},
         {"mean_before", number(before / n)},
         {"mean_after", number(after / n)},
-        {"frames", frames}};
+        {"frames", list}};
   }
 
   json failures = json::array();
-  for (const FrameSummary& f : result.frames)
+  for (const FrameSummary& f : frames)
     if (f.status == FrameStatus::Failed)
       failures.push_back({{"frame", f.frame}, {"file", f.file}, {"reason", f.failure}});
   r["failures"] = failures;
-  r["warnings"] = result.warnings;
-  r["outputs"] = {{"dir", c.output.dir.string()},
-                  {"distortion", c.output.per_triangle_csv ? json("distortion/") : json(nullptr)},
-                  {"summary", "summary.csv"}};
-  r["outputs"].update(plan.sink->report());
-  r["outputs"].update(result.extra_outputs);
-  if (c.output.timings)
-    r["run"] = {
-        {"threads", plan.threads},
-        {"frames_in_flight", plan.frames_in_flight},
-        {"seconds", result.seconds},
-        {"frames_per_second", result.seconds > 0 ? result.frames.size() / result.seconds : 0.0}};
+  r["warnings"] = warnings;
+  r["outputs"] = header.outputs;
+  if (!run.is_null()) r["run"] = run;
+  return r;
+}
+
+json make_report(const SequencePlan& plan, const SequenceResult& result) {
+  const JobConfig& c = plan.config;
+  ReportHeader header = report_header(plan);
+  header.outputs.update(result.extra_outputs);  // colored, checker, iterations
+  json run;
+  if (c.output.timings) {
+    const size_t processed = result.frames.size() - size_t(result.resumed);
+    run = {{"threads", plan.threads},
+           {"frames_in_flight", plan.frames_in_flight},
+           {"seconds", result.seconds},
+           {"frames_processed", processed},
+           {"frames_resumed", result.resumed},
+           {"frames_per_second", result.seconds > 0 ? processed / result.seconds : 0.0}};
+  }
+  json r = make_report(header, result.frames, result.warnings, result.interrupted, run);
+  if (c.shard.sharded()) {
+    json frames = json::array();
+    for (int index : plan.run_frames)
+      frames.push_back({{"frame", index}, {"file", plan.source->name(index)}});
+    r["outputs"]["summary"] = summary_file_name(c.shard);
+    r["shard"] = {
+        {"index", c.shard.index},
+        {"count", c.shard.count},
+        {"complete", !result.interrupted && result.frames.size() == plan.run_frames.size()},
+        {"frames", frames},
+        {"plan_warnings", plan.warnings}};
+  }
   return r;
 }
 

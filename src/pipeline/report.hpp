@@ -7,17 +7,25 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "io/config.hpp"
 #include "pipeline/sequence_job.hpp"
 
 namespace sm {
 
 /// The columns of summary.csv: frame, file, vertices, triangles, shear_{max,mean,p95}_{before,
 /// after}, dist_out_to_in_{max,rms}, dist_in_to_out_{max,rms}, iterations, seconds, then status,
-/// failure and time (seconds into the animation for glTF input, empty otherwise).
+/// failure, time (seconds into the animation for glTF input, empty otherwise) and
+/// folded_triangles.
 std::vector<std::string> summary_columns();
 
 /// summary.csv, one row per frame in order. Without `timings`, the seconds column holds 0.
 std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool timings);
+
+/// Appends the warnings report.json lists for a frame, in this order: its own (reading it),
+/// its failure ("frame 3 (frame_0003.obj) failed, written unchanged: ..."; "not written" with
+/// on_failure "skip") and its folded triangles, each prefixed by the frame's label.
+void append_frame_warnings(const FrameSummary& frame, OnFailure on_failure,
+                           std::vector<std::string>& warnings);
 
 /// distortion/<frame>.csv: `triangle,shear_before,shear_after`, one row per triangle (0-based).
 std::string format_distortion_csv(const Eigen::VectorXd& before, const Eigen::VectorXd& after);
@@ -25,8 +33,39 @@ std::string format_distortion_csv(const Eigen::VectorXd& before, const Eigen::Ve
 /// Program and library versions: seqmassage, Eigen, oneTBB, nlohmann-json, compiler.
 nlohmann::json version_info();
 
-/// report.json: the resolved config, versions, template, totals over the frames, ground truth
-/// errors (synthetic input), failures, warnings and, with timings, the run time.
+/// The parts of report.json that the plan decides, the same in every shard of a job.
+struct ReportHeader {
+  nlohmann::json versions;  ///< version_info()
+  /// The job's resolved config (to_json) with the run controls reset: "shard" {0, 1} and
+  /// "resume" false, so that a sharded, merged or resumed run reports the same config as one run.
+  nlohmann::json config;
+  nlohmann::json input;               ///< FrameSource::report()
+  nlohmann::json templ;               ///< "template": source, counts, fallback vertices, hash
+  nlohmann::json outputs;             ///< file names, relative to output.dir
+  int frames_listed = 0;              ///< frames of the input
+  int frames_selected = 0;            ///< frames input.range selects (all shards together)
+  std::string ground_truth;           ///< folder of a synthetic input's clean frames, or ""
+  std::string config_hash;            ///< frame_config_hash
+  std::vector<std::string> warnings;  ///< the plan's (template, range)
+};
+
+/// The header of a plan's report.
+ReportHeader report_header(const SequencePlan& plan);
+
+/// The header of a shard's report (report.shard-I-of-N.json), which keeps the plan's warnings
+/// in "shard"."plan_warnings". Throws InputError naming the missing key.
+ReportHeader report_header_from_json(const nlohmann::json& shard_report);
+
+/// report.json: versions, the config, input and template of `header`, totals over `frames`,
+/// ground truth errors (synthetic input), failures, `warnings` (the header's, the frames', the
+/// output's), whether the run was `interrupted`, and `run` (timings) unless it is null.
+nlohmann::json make_report(const ReportHeader& header, const std::vector<FrameSummary>& frames,
+                           const std::vector<std::string>& warnings, bool interrupted,
+                           const nlohmann::json& run);
+
+/// The report of a run: make_report of the plan's header and the result's frames, with the run's
+/// times (config.output.timings), and for a shard its "shard" section (index, count, its frames,
+/// whether it is complete, the plan's warnings), from which `seqmassage merge` works.
 nlohmann::json make_report(const SequencePlan& plan, const SequenceResult& result);
 
 }  // namespace sm

@@ -14,12 +14,17 @@
 
 #include "geometry/bvh.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "io/mesh_file.hpp"
+#include "io/sha256.hpp"
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
+#include "pipeline/fold_check.hpp"
 #include "pipeline/frame_extras.hpp"
+#include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
+#include "pipeline/shard.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
@@ -64,10 +69,10 @@ std::string connectivity_mismatch(const SequencePlan& plan, int index, const Tri
 // whose connectivity differs from the template's.
 void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
   const FrameSource& source = *plan.source;
-  std::vector<std::string> problems(plan.selected.size());
+  std::vector<std::string> problems(plan.run_frames.size());
   arena.execute([&] {
-    tbb::parallel_for(size_t{0}, plan.selected.size(), [&](size_t k) {
-      const int index = plan.selected[k];
+    tbb::parallel_for(size_t{0}, plan.run_frames.size(), [&](size_t k) {
+      const int index = plan.run_frames[k];
       if (index == plan.template_frame) return;
       problems[k] =
           connectivity_mismatch(plan, index, source.decode(index, source.fetch(index)).mesh);
@@ -82,6 +87,11 @@ fs::path distortion_csv_name(const SequencePlan& plan, int index) {
   return fs::path(plan.source->name(index)).replace_extension(".csv");
 }
 
+// The distortion table of a frame, relative to output.dir.
+fs::path distortion_file(const SequencePlan& plan, int index) {
+  return fs::path("distortion") / distortion_csv_name(plan, index);
+}
+
 // Refuses an output file that is one of the inputs.
 void check_outputs(const SequencePlan& plan) {
   const JobConfig& c = plan.config;
@@ -91,34 +101,22 @@ void check_outputs(const SequencePlan& plan) {
     const fs::path resolved = fs::weakly_canonical(p, ec);
     return (ec ? fs::absolute(p) : resolved).lexically_normal();
   };
-  std::vector<int> read = plan.selected;
+  std::vector<int> read = plan.run_frames;
   if (plan.template_frame >= 0) read.push_back(plan.template_frame);
   for (const fs::path& file : plan.source->files(read)) inputs.insert(canonical(file));
   if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
-  std::vector<fs::path> outputs = plan.sink->files(plan.selected);
-  outputs.push_back(c.output.dir / "summary.csv");
-  outputs.push_back(c.output.dir / "report.json");
-  if (c.output.per_triangle_csv)
-    for (int index : plan.selected)
-      outputs.push_back(c.output.dir / "distortion" / distortion_csv_name(plan, index));
-  for (fs::path& file : plan.extras->files(plan.selected)) outputs.push_back(std::move(file));
+  std::vector<fs::path> outputs = plan.sink->files(plan.run_frames);
+  outputs.push_back(c.output.dir / summary_file_name(c.shard));
+  outputs.push_back(c.output.dir / report_file_name(c.shard));
+  for (int index : plan.run_frames) {
+    outputs.push_back(record_file(c.output.dir, plan.source->name(index)));
+    if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / distortion_file(plan, index));
+  }
+  for (fs::path& file : plan.extras->files(plan.run_frames)) outputs.push_back(std::move(file));
   for (const fs::path& out : outputs)
     if (inputs.count(canonical(out)))
       throw ConfigError("output.dir: writing " + out.string() +
                         " would overwrite an input file; choose another output folder");
-}
-
-std::vector<int> select_frames(const FrameRange& range, int count) {
-  if (range.start >= count)
-    throw ConfigError("input.range.start: " + std::to_string(range.start) +
-                      " is beyond the last frame (the sequence has " + std::to_string(count) +
-                      " frames, 0 to " + std::to_string(count - 1) + ")");
-  const int stop = range.stop ? std::min(*range.stop, count) : count;
-  std::vector<int> selected;
-  for (int i = range.start; i < stop; i += range.step) selected.push_back(i);
-  if (selected.empty())
-    throw ConfigError("input.range: selects no frames (" + format_frame_range(range) + ")");
-  return selected;
 }
 
 // One frame in flight through the pipeline.
@@ -129,7 +127,57 @@ struct Work {
   std::string csv;    // per-triangle distortion (if asked)
   ExtraFrame extras;  // colored, checker and iterations outputs (if asked)
   FrameSummary summary;
+  bool has_output = true;  // false: failed, and output.on_failure is "skip"
+  FrameRecord record;      // the record to write, or the one resumed from
+  bool resumed = false;    // the record is current: nothing to compute or write
+  std::string redo;        // resuming: why the frame is processed again
 };
+
+// Why the frame is processed again although resuming ("" if its record is current).
+std::string resume_problem(const SequencePlan& plan, int index, const std::string& input_hash,
+                           FrameRecord& record) {
+  std::string problem;
+  std::optional<FrameRecord> found =
+      read_frame_record(record_file(plan.config.output.dir, plan.source->name(index)), &problem);
+  if (!found) return problem.rfind("unreadable", 0) == 0 ? "an unreadable record" : problem;
+  if (found->config_hash != plan.config_hash) return "the config changed";
+  if (found->template_hash != plan.template_hash) return "the template changed";
+  if (found->input_hash != input_hash) return "the input changed";
+  if (found->summary.frame != index || found->summary.file != plan.source->name(index))
+    return "the record is another frame's";
+  if (!check_recorded_outputs(*found, plan.config.output.dir, true).empty())
+    return "an output is missing or changed";
+  record = std::move(*found);
+  return "";
+}
+
+RecordedOutput recorded(const fs::path& path, const std::string& bytes) {
+  return {path.generic_string(), bytes.size(), sha256_hex(bytes)};
+}
+
+// Non-finite positions, then folds: the reason the optimized positions `V` of a frame read as
+// `input` fail the checks, or "".
+std::string check_output(const SequencePlan& plan, const TriMesh& input, const Positions& V,
+                         FrameSummary& s) {
+  if (std::string bad = non_finite_positions(V); !bad.empty())
+    return "non-finite positions: output " + bad;
+  const FoldCount folds =
+      count_folded_triangles(plan.templ.F, plan.massager->topology(), input.V, V);
+  s.folded_triangles = folds.folded;
+  const FrameChecks& checks = plan.config.checks;
+  const int m = static_cast<int>(plan.templ.F.rows());
+  std::string over;
+  if (checks.max_folded_triangles && folds.folded > *checks.max_folded_triangles)
+    over = "checks.max_folded_triangles = " + std::to_string(*checks.max_folded_triangles);
+  else if (checks.max_folded_fraction && folds.folded > *checks.max_folded_fraction * m)
+    over = "checks.max_folded_fraction = " + format_number(*checks.max_folded_fraction) + " of " +
+           std::to_string(m) + " triangles";
+  if (!over.empty())
+    return "folded triangles: " + std::to_string(folds.folded) +
+           " output triangles are folded over (normal opposed to the input frame's), more than " +
+           over;
+  return "";
+}
 
 void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   const auto t0 = Clock::now();
@@ -155,6 +203,10 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   if (w.index == plan.template_frame && !c.templ.optimize) {
     s.status = FrameStatus::Template;
     unchanged = true;
+  } else if (std::string bad = non_finite_positions(file.mesh.V); !bad.empty()) {
+    s.status = FrameStatus::Failed;  // only a source that does not check its frames gets here
+    s.failure = "non-finite positions: input " + bad;
+    unchanged = true;
   } else {
     const std::string name = frame_label(plan, w.index);
     reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology(),
@@ -163,11 +215,14 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     s.iterations = static_cast<int>(result.iterations.size());
     if (!result.ok) {
       s.status = FrameStatus::Failed;
-      s.failure = result.failure;
+      s.failure = "optimizer failed: " + result.failure;
+      unchanged = true;
+    } else if (std::string bad = check_output(plan, file.mesh, result.V, s); !bad.empty()) {
+      s.status = FrameStatus::Failed;
+      s.failure = std::move(bad);
       unchanged = true;
     } else {
       s.status = FrameStatus::Optimized;
-      s.folded_triangles = result.folded_triangles;
       V = result.V;
       const TriMesh output{V, F};
       const Topology& topology = plan.massager->topology();
@@ -179,14 +234,18 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
     }
   }
-  w.out = plan.sink->encode(file, V, unchanged);
+  w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
+  if (w.has_output) w.out = plan.sink->encode(file, V, unchanged);
   const Eigen::VectorXd after = unchanged ? before : shear_distortion(plan.templ.V, V, F);
   s.shear_before = summarize_distortion(before);
   s.shear_after = summarize_distortion(after);
-  if (c.output.per_triangle_csv) w.csv = format_distortion_csv(before, after);
-  if (plan.extras->any())
+  if (c.output.per_triangle_csv && w.has_output) w.csv = format_distortion_csv(before, after);
+  if (plan.extras->any()) {
     w.extras = extras.encode({w.index, &file, &V, &before, &after, reference ? &result : nullptr,
                               reference ? &*reference : nullptr});
+    // In the frame's warnings, so that its record keeps it (resume, merge).
+    if (!w.extras.warning.empty()) s.warnings.insert(s.warnings.begin(), w.extras.warning);
+  }
 
   if (const std::optional<Positions> clean = plan.source->ground_truth(w.index)) {
     const double unit = mean_edge_length(plan.templ);
@@ -194,7 +253,20 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     const Eigen::VectorXd e_out = (V - *clean).rowwise().norm() / unit;
     s.ground_truth = GroundTruthError{e_in.mean(), e_in.maxCoeff(), e_out.mean(), e_out.maxCoeff()};
   }
-  s.seconds = seconds_since(t0);
+  s.seconds = c.output.timings ? seconds_since(t0) : 0.0;  // 0: records reproduce byte for byte
+
+  FrameRecord& r = w.record;
+  r.config_hash = plan.config_hash;
+  r.template_hash = plan.template_hash;
+  r.outputs.clear();
+  if (w.has_output) {
+    r.outputs.push_back(recorded(plan.sink->output_file(w.index), w.out));
+    if (c.output.per_triangle_csv)
+      r.outputs.push_back(recorded(distortion_file(plan, w.index), w.csv));
+    for (const auto& [path, bytes] : w.extras.files) r.outputs.push_back(recorded(path, bytes));
+  }
+  r.summary = s;
+  r.iterations_csv = w.extras.iterations_csv;
 }
 
 }  // namespace
@@ -223,6 +295,7 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
   plan.extras = std::make_shared<const FrameExtras>(c, plan.source);
   const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
+  plan.run_frames = shard_frames(plan.selected, c.shard);
   for (std::string& warning : plan.extras->check(plan.selected))
     plan.warnings.push_back(std::move(warning));
 
@@ -240,6 +313,8 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
   }
   plan.massager =
       std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
+  plan.config_hash = frame_config_hash(c);
+  plan.template_hash = template_hash(plan.templ);
 
   const MeshReport report = check_mesh(plan.templ, plan.massager->topology());
   if (!report.ok_for_optimization())
@@ -268,6 +343,24 @@ std::string describe_plan(const SequencePlan& plan) {
     << "): " << plan.source->name(plan.selected.front());
   if (plan.selected.size() > 1) s << " ... " << plan.source->name(plan.selected.back());
   s << "\n";
+  if (c.shard.sharded()) {
+    s << shard_label(c.shard) << ": " << plan.run_frames.size() << " frames";
+    if (!plan.run_frames.empty()) {
+      s << ": " << plan.source->name(plan.run_frames.front());
+      if (plan.run_frames.size() > 1) s << " ... " << plan.source->name(plan.run_frames.back());
+    }
+    s << "\n";
+  }
+  if (c.resume) {
+    int current = 0;  // records of this config and template (inputs and outputs checked at run)
+    for (int index : plan.run_frames) {
+      const auto r = read_frame_record(record_file(c.output.dir, plan.source->name(index)));
+      current += r && r->config_hash == plan.config_hash && r->template_hash == plan.template_hash;
+    }
+    s << "resume: " << current << " of " << plan.run_frames.size()
+      << " frames have a record of this config and template (skipped if their input and "
+         "outputs are unchanged)\n";
+  }
   s << "template: " << plan.template_source << ", " << plan.templ.num_vertices() << " vertices, "
     << plan.templ.num_triangles() << " triangles";
   if (plan.template_frame >= 0)
@@ -280,11 +373,12 @@ std::string describe_plan(const SequencePlan& plan) {
     << m["solver"].get<std::string>() << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
-  s << plan.sink->describe(plan.selected);
+  s << plan.sink->describe(plan.run_frames);
   if (c.output.per_triangle_csv)
-    s << "  distortion/<name>.csv (" << plan.selected.size() << " files)\n";
-  s << plan.extras->describe(plan.selected);
-  s << "  summary.csv, report.json\n";
+    s << "  distortion/<name>.csv (" << plan.run_frames.size() << " files)\n";
+  s << plan.extras->describe(plan.run_frames);
+  s << "  records/<name>.json (" << plan.run_frames.size() << " files)\n";
+  s << "  " << summary_file_name(c.shard) << ", " << report_file_name(c.shard) << "\n";
   for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
   return s.str();
 }
@@ -295,14 +389,21 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const fs::path& out = c.output.dir;
   SequenceResult result;
   result.warnings = plan.warnings;
+  for (const char* dir :
+       {".", "frames", "distortion", "positions", "records", "input", "ground_truth"})
+    remove_stale_temporaries(out / dir);
+  // The summary and report of an earlier run would no longer describe the files: they are written
+  // again when this run ends (or stops at an interruption), and are absent until then.
+  for (const std::string& name : {summary_file_name(c.shard), report_file_name(c.shard)}) {
+    std::error_code ec;
+    fs::remove(out / name, ec);
+  }
   plan.source->prepare();
-  for (const fs::path& dir : {out, out / "frames", out / "distortion"})
-    remove_stale_temporaries(dir);
   for (const fs::path& dir : plan.extras->folders()) remove_stale_temporaries(dir);
   const std::unique_ptr<FrameWriter> writer = plan.sink->start();
   const std::unique_ptr<ExtrasRun> extras = plan.extras->start(plan);
 
-  const size_t total = plan.selected.size();
+  const size_t total = plan.run_frames.size();
   size_t next = 0;
   // The first exception of a stage stops the input and is rethrown once the frames in flight have
   // drained, unwritten: thrown through parallel_pipeline, it would leak them (oneTBB does not
@@ -340,7 +441,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                 return nullptr;
               }
               auto w = std::make_shared<Work>();
-              w->index = plan.selected[next++];
+              w->index = plan.run_frames[next++];
               return guarded([&](std::shared_ptr<Work> w) {
                 w->bytes = plan.source->fetch(w->index);
                 return w;
@@ -348,29 +449,52 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
             }) &
             tbb::make_filter<std::shared_ptr<Work>, std::shared_ptr<Work>>(
                 tbb::filter_mode::parallel, guarded([&](std::shared_ptr<Work> w) {
+                  const std::string input_hash = plan.source->input_hash(w->index, w->bytes);
+                  if (c.resume) {
+                    w->redo = resume_problem(plan, w->index, input_hash, w->record);
+                    if (w->redo.empty()) {
+                      w->resumed = true;
+                      w->summary = w->record.summary;
+                      w->summary.resumed = true;
+                      w->has_output = !(w->summary.status == FrameStatus::Failed &&
+                                        c.output.on_failure == OnFailure::Skip);
+                      return w;
+                    }
+                  }
+                  w->record.input_hash = input_hash;
                   process_frame(plan, *extras, *w);
                   return w;
                 })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
                 tbb::filter_mode::serial_in_order, guarded([&](std::shared_ptr<Work> w) {
-                  writer->write(w->index, w->out);
-                  if (c.output.per_triangle_csv)
-                    write_file_atomic(out / "distortion" / distortion_csv_name(plan, w->index),
-                                      w->csv);
-                  extras->write(w->extras);
-                  const FrameSummary& s = w->summary;
-                  const std::string who = frame_label(plan, w->index);
-                  if (!w->extras.warning.empty())
-                    result.warnings.push_back(who + ": " + w->extras.warning);
-                  for (const std::string& warning : s.warnings)
-                    result.warnings.push_back(who + ": " + warning);
-                  if (s.status == FrameStatus::Failed) {
-                    ++result.failed;
-                    result.warnings.push_back(who + " failed, written unchanged: " + s.failure);
+                  if (w->resumed) {
+                    if (w->has_output) writer->keep(w->index);
+                    extras->keep(w->record.iterations_csv);
+                    ++result.resumed;
+                  } else {
+                    if (c.resume) ++result.redone[w->redo];
+                    // The record goes first and comes back last: a record on disk always
+                    // describes complete outputs of its config.
+                    const fs::path record = record_file(out, plan.source->name(w->index));
+                    std::error_code ec;
+                    fs::remove(record, ec);
+                    const fs::path csv = out / distortion_file(plan, w->index);
+                    if (w->has_output) {
+                      writer->write(w->index, w->out);
+                      if (c.output.per_triangle_csv) write_file_atomic(csv, w->csv);
+                      extras->write(w->extras);
+                    } else {
+                      writer->skip(w->index);
+                      fs::remove(csv, ec);
+                      for (const auto& [file, bytes] : w->extras.files) fs::remove(out / file, ec);
+                      w->extras.files.clear();
+                      extras->write(w->extras);  // its iterations.csv rows
+                    }
+                    write_file_atomic(record, to_json(w->record).dump(1) + "\n");
                   }
-                  if (s.folded_triangles > 0)
-                    result.warnings.push_back(who + ": " + std::to_string(s.folded_triangles) +
-                                              " triangles folded over the input surface");
+                  const FrameSummary& s = w->summary;
+                  append_frame_warnings(s, c.output.on_failure, result.warnings);
+                  if (s.status == FrameStatus::Failed) ++result.failed;
                   result.frames.push_back(std::move(w->summary));
                   if (hooks.progress)
                     hooks.progress(result.frames.back(), static_cast<int>(result.frames.size()),
@@ -382,8 +506,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
   result.extra_outputs = extras->finish();
   result.seconds = seconds_since(t0);
-  write_file_atomic(out / "summary.csv", format_summary_csv(result.frames, c.output.timings));
-  write_file_atomic(out / "report.json", make_report(plan, result).dump(2) + "\n");
+  write_file_atomic(out / summary_file_name(c.shard),
+                    format_summary_csv(result.frames, c.output.timings));
+  write_file_atomic(out / report_file_name(c.shard), make_report(plan, result).dump(2) + "\n");
   return result;
 }
 

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,7 +27,8 @@ class FrameExtras;
 enum class FrameStatus {
   Optimized,  ///< "optimized": massaged and written with its new positions
   Template,   ///< "template": the template frame, written unchanged (byte for byte)
-  Failed,     ///< "failed": numerical failure; written unchanged, the reason in `failure`
+  Failed,     ///< "failed": numerical failure; written unchanged or not at all (output.on_failure),
+              ///< the reason in `failure`
 };
 
 /// Distances of the synthetic sequence's vertices to their ground-truth positions, in units of
@@ -50,10 +52,16 @@ struct FrameSummary {
   int iterations = 0;              ///< outer iterations run
   double seconds = 0.0;            ///< optimization and measures of this frame
   FrameStatus status = FrameStatus::Optimized;
-  std::string failure;       ///< why the frame failed (status Failed)
-  int folded_triangles = 0;  ///< triangles of the output folded over the input surface
+  /// Why the frame failed (status Failed): "optimizer failed: ...", "non-finite positions: ..."
+  /// or "folded triangles: ...".
+  std::string failure;
+  /// Output triangles whose normal opposes the same triangle's normal in the input frame
+  /// (count_folded_triangles); checks.max_folded_triangles decides whether the frame fails.
+  int folded_triangles = 0;
   std::optional<GroundTruthError> ground_truth;  ///< synthetic input only
   std::vector<std::string> warnings;             ///< from reading the frame (e.g. glTF welding)
+  /// Not processed by this run: taken from the frame's record by resume (not in summary.csv).
+  bool resumed = false;
 };
 
 /// Everything a run needs, checked: built by plan_sequence_job without writing anything.
@@ -62,13 +70,16 @@ struct SequencePlan {
   std::shared_ptr<const FrameSource> source;  ///< every input frame, in order
   std::shared_ptr<const FrameSink> sink;      ///< where the corrected frames go
   std::shared_ptr<const FrameExtras> extras;  ///< colored, checker and iterations outputs
-  std::vector<int> selected;                  ///< indices of the frames to process, in order
-  int template_frame = -1;                    ///< index of the template frame, -1 for a mesh
-  std::string template_source;                ///< e.g. "frame 0 (frame_0000.obj)"
-  TriMesh templ;                              ///< the original template: weights and shear
-  std::shared_ptr<const Massager> massager;   ///< built once from the template
-  int threads = 1;                            ///< resolved worker threads
-  int frames_in_flight = 2;                   ///< resolved pipeline tokens
+  std::vector<int> selected;                  ///< indices of the job's selected frames, in order
+  std::vector<int> run_frames;  ///< the frames this run processes: `selected`, or its shard of them
+  int template_frame = -1;      ///< index of the template frame, -1 for a mesh
+  std::string template_source;  ///< e.g. "frame 0 (frame_0000.obj)"
+  TriMesh templ;                ///< the original template: weights and shear
+  std::shared_ptr<const Massager> massager;  ///< built once from the template
+  int threads = 1;                           ///< resolved worker threads
+  int frames_in_flight = 2;                  ///< resolved pipeline tokens
+  std::string config_hash;    ///< frame_config_hash(config), kept in every frame record
+  std::string template_hash;  ///< template_hash(templ)
   std::vector<std::string> warnings;
 };
 
@@ -77,6 +88,10 @@ struct SequenceResult {
   std::vector<FrameSummary> frames;
   std::vector<std::string> warnings;
   int failed = 0;
+  int resumed = 0;  ///< frames taken from their records (resume), not processed again
+  /// Why frames were processed again when resuming, with how many: "no record", "the config
+  /// changed", "the input changed", "an output is missing or changed", ...
+  std::map<std::string, int> redone;
   bool interrupted = false;  ///< stopped by RunHooks::cancel before every frame was done
   double seconds = 0.0;      ///< wall time of the whole run
   nlohmann::json extra_outputs = nlohmann::json::object();  ///< report.json "outputs" entries
@@ -92,19 +107,25 @@ struct RunHooks {
 };
 
 /// Checks the config and every input before anything runs: lists the frames (or loads and welds
-/// the glTF), reads every selected frame (in parallel, in a bounded way) and compares its vertex
-/// count and faces with the template's, builds the template's Massager, and refuses an output
-/// folder that would overwrite an input. Throws ConfigError, InputError (naming the frame and the
-/// counts, or the glTF file and element) or IoError. Writes nothing.
+/// the glTF), selects the run's frames (input.range, then config.shard), reads every one of them
+/// (in parallel, in a bounded way) and compares its vertex count and faces with the template's,
+/// builds the template's Massager, and refuses an output folder that would overwrite an input.
+/// Throws ConfigError, InputError (naming the frame and the counts, or the glTF file and element)
+/// or IoError. Writes nothing.
 SequencePlan plan_sequence_job(const JobConfig& config);
 
 /// What a run of `plan` would do, several lines of text (for --dry-run).
 std::string describe_plan(const SequencePlan& plan);
 
-/// Runs the job: writes the synthetic input (if any), then frames/<name>.obj (or sequence.glb),
-/// distortion/<name>.csv (if asked), summary.csv and report.json under config.output.dir, each file
-/// atomically. A frame's numerical failure is recorded in the result, not thrown. Same plan, same
-/// output bytes (apart from timings), whatever the number of threads.
+/// Runs the job: writes the synthetic input (if any), then per frame frames/<name>.obj (or
+/// positions/<name>.bin, assembled into sequence.glb at the end), distortion/<name>.csv (if asked)
+/// and its record records/<name>.json, then summary.csv and report.json (named by shard for a
+/// shard) under config.output.dir, each file atomically. With config.resume, a frame whose record
+/// is current (same config hash, template hash and input hash; outputs present with their size
+/// and SHA-256) is not processed again: its row comes from the record. A frame's numerical failure
+/// (optimizer failure, non-finite positions, more folded triangles than checks allow) is recorded
+/// in the result, not thrown. Same plan, same output bytes (apart from timings), whatever the
+/// number of threads, interruptions and resumes.
 SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks = {});
 
 /// The column value of a status: "optimized", "template", "failed".

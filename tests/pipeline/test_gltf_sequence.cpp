@@ -34,6 +34,9 @@ JobConfig gltf_job(const fs::path& gltf, const fs::path& out, OutputFormat forma
   c.output.timings = false;
   c.massage.iterations = 6;
   c.threads = 2;
+  // The skin creases the 8-triangle strip so sharply (shear 13 at the seam) that one triangle
+  // folds in its most bent frames: counted, not failed, so that every frame is compared.
+  c.checks.max_folded_fraction.reset();
   return c;
 }
 
@@ -100,7 +103,8 @@ TEST_CASE("a skinned glTF runs to sequence.glb and to OBJ frames with the same r
   const SequenceResult r = run_sequence_job(plan);
   REQUIRE(r.frames.size() == 21);
   CHECK(r.failed == 0);
-  CHECK(files_under(dir / "glb").size() == 21 + 3);  // distortion/*.csv, summary, report, GLB
+  // distortion/*.csv, positions/*.bin, records/*.json, summary, report, GLB
+  CHECK(files_under(dir / "glb").size() == 3 * 21 + 3);
   CHECK_FALSE(fs::exists(dir / "glb/frames"));
   test::require_valid_gltf(dir / "glb/sequence.glb");
 
@@ -171,8 +175,8 @@ TEST_CASE("glTF jobs write the same bytes with 1 and 2 threads") {
     run_sequence_job(plan_sequence_job(c));
     const std::vector<fs::path> files = files_under(dir / "one");
     CHECK(files == files_under(dir / "two"));
-    CHECK(int(files.size()) ==
-          16 * (format == OutputFormat::Obj ? 2 : 1) + 2 + (format == OutputFormat::Gltf ? 1 : 0));
+    // frames/*.obj or positions/*.bin, distortion/*.csv, records/*.json, summary, report, GLB
+    CHECK(int(files.size()) == 16 * 3 + 2 + (format == OutputFormat::Gltf ? 1 : 0));
     for (const fs::path& file : files) {
       if (file == "report.json") continue;  // holds the thread count
       INFO(file.string());

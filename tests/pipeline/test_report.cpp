@@ -52,11 +52,12 @@ TEST_CASE("summary.csv has the documented columns, in order") {
                                                "iterations",
                                                "seconds"};
   const std::vector<std::string> columns = summary_columns();
-  REQUIRE(columns.size() == documented.size() + 3);
+  REQUIRE(columns.size() == documented.size() + 4);
   CHECK(std::vector<std::string>(columns.begin(), columns.begin() + 16) == documented);
   CHECK(columns[16] == "status");
   CHECK(columns[17] == "failure");
   CHECK(columns[18] == "time");
+  CHECK(columns[19] == "folded_triangles");
 }
 
 TEST_CASE("summary rows: failures with their reason, non-finite values, timings") {
@@ -79,16 +80,18 @@ TEST_CASE("summary rows: failures with their reason, non-finite values, timings"
   failed.status = FrameStatus::Failed;
   failed.failure = "iteration 2: the solution contains NaN";
   failed.time = 0.125;  // a glTF frame's time; empty for frames without one
+  failed.folded_triangles = 7;
   const std::string header =
       "frame,file,vertices,triangles,shear_max_before,shear_mean_before,shear_p95_before,"
       "shear_max_after,shear_mean_after,shear_p95_after,dist_out_to_in_max,dist_out_to_in_rms,"
-      "dist_in_to_out_max,dist_in_to_out_rms,iterations,seconds,status,failure,time\n";
+      "dist_in_to_out_max,dist_in_to_out_rms,iterations,seconds,status,failure,time,"
+      "folded_triangles\n";
   CHECK(format_summary_csv({ok, failed}, true) ==
         header +
             "3,frame_0003.obj,10,16,0.5,0.25,0.4,inf,0.125,0.2,0.01,0.005,0.02,0.0025,15,1.5,"
-            "optimized,,\n"
+            "optimized,,,0\n"
             "4,\"frame,4.obj\",10,16,0.5,0.25,0.4,inf,0.125,0.2,0.01,0.005,0.02,0.0025,15,1.5,"
-            "failed,iteration 2: the solution contains NaN,0.125\n");
+            "failed,iteration 2: the solution contains NaN,0.125,7\n");
   const std::string untimed = format_summary_csv({ok}, false);
   CHECK(untimed.find(",15,0,optimized,") != std::string::npos);
 }

@@ -1,0 +1,85 @@
+#pragma once
+// Small generated sequences for the sequence job's robustness tests (numerical failures, resume,
+// shards): a folder of drifted tube frames and a config reading it, and helpers to compare
+// output folders byte for byte.
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/atomic_file.hpp"
+#include "io/config.hpp"
+#include "pipeline/synthetic.hpp"
+
+namespace sm::test {
+
+inline SyntheticConfig small_tube(int frames = 6) {
+  SyntheticConfig c;
+  c.frames = frames;
+  c.segments = 12;
+  c.rings = 10;
+  return c;
+}
+
+// Frames of `tube` in dir/in, and a config reading them into dir/out (8 iterations, per-triangle
+// tables, no timings: every output byte is reproducible).
+inline JobConfig tube_job(const std::filesystem::path& dir, const SyntheticConfig& tube) {
+  write_synthetic_sequence(make_synthetic_sequence(tube), dir / "in", dir / "gt");
+  JobConfig c;
+  c.input.frames = dir / "in";
+  c.output.dir = dir / "out";
+  c.output.per_triangle_csv = true;
+  c.output.timings = false;
+  c.massage.iterations = 8;
+  c.threads = 2;
+  return c;
+}
+
+// Every regular file under `dir` with its bytes, by path relative to `dir`; files whose name
+// matches `skip` (a substring) are left out.
+inline std::map<std::string, std::string> folder_bytes(const std::filesystem::path& dir,
+                                                       const std::string& skip = "") {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string rel = std::filesystem::relative(entry.path(), dir).generic_string();
+    if (!skip.empty() && rel.find(skip) != std::string::npos) continue;
+    files[rel] = read_file(entry.path());
+  }
+  return files;
+}
+
+// The file names of folder_bytes.
+inline std::vector<std::string> names_of(const std::map<std::string, std::string>& files) {
+  std::vector<std::string> names;
+  for (const auto& [name, bytes] : files) names.push_back(name);
+  return names;
+}
+
+// Rewrites the `v` lines of an OBJ file through `f(vertex index, x, y, z)`.
+template <class F>
+void edit_obj_vertices(const std::filesystem::path& file, F&& f) {
+  const std::string text = read_file(file);
+  std::string out;
+  int v = 0;
+  size_t at = 0;
+  while (at < text.size()) {
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(at, end - at);
+    if (line.rfind("v ", 0) == 0) {
+      double x = 0, y = 0, z = 0;
+      std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z);
+      f(v++, x, y, z);
+      char buffer[128];
+      std::snprintf(buffer, sizeof buffer, "v %.17g %.17g %.17g", x, y, z);
+      line = buffer;
+    }
+    out += line + "\n";
+    at = end + 1;
+  }
+  write_file_atomic(file, out);
+}
+
+}  // namespace sm::test
