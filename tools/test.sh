@@ -9,21 +9,32 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 bash tools/setup.sh
 jobs="$(nproc 2>/dev/null || echo 2)"
+# Each stage's wall time, so a CI log shows where the time goes.
+stage_start=$SECONDS
+stage() {
+  echo "test: $1 done in $((SECONDS - stage_start)) s"
+  stage_start=$SECONDS
+}
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$jobs"
+stage "Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"
+stage "Release tests"
 
 if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEQMASSAGE_ASAN=ON \
     -DSEQMASSAGE_BUILD_TOOLS=OFF >/dev/null
   cmake --build build-asan -j"$jobs"
+  stage "ASan+UBSan build"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --test-dir build-asan --output-on-failure -j"$jobs"
+  stage "ASan+UBSan tests"
 
   if [ "${SEQMASSAGE_SKIP_TSAN:-0}" != 1 ]; then
     status=0
     bash tools/tsan.sh || status=$?
+    stage "ThreadSanitizer (oneTBB, build and tests)"
     if [ "$status" = 3 ]; then
       echo "test: ThreadSanitizer stage SKIPPED: oneTBB could not be built with it (see above)"
     elif [ "$status" != 0 ]; then
