@@ -14,6 +14,7 @@
 // the parser without a second list to keep in step.
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <regex>
 #include <set>
@@ -313,4 +314,32 @@ TEST_CASE("the README's defaults are the parser's") {
       ++checked;
     }
   CHECK(checked > 60);
+}
+
+TEST_CASE("configs/*_all_keys.json spell out every key their job resolves") {
+  const fs::path configs = fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "configs";
+  // Every leaf path of `resolved` (objects descended into; arrays and values are leaves).
+  const std::function<void(const json&, const std::string&, std::vector<std::string>&)> leaves =
+      [&](const json& v, const std::string& path, std::vector<std::string>& out) {
+        if (!v.is_object() || v.empty()) {
+          out.push_back(path);
+          return;
+        }
+        for (const auto& item : v.items())
+          leaves(item.value(), path.empty() ? item.key() : path + "." + item.key(), out);
+      };
+  int files = 0;
+  for (const std::string name : {"sequence_all_keys.json", "remesh_all_keys.json"}) {
+    INFO("configs/" << name);
+    const json written = parse_json_strict(read_file(configs / name));
+    std::vector<std::string> paths;
+    leaves(resolved(written), "", paths);
+    CHECK(paths.size() > 20);
+    for (const std::string& path : paths) {
+      INFO(path);
+      CHECK(find(written, path));
+    }
+    ++files;
+  }
+  CHECK(files == 2);
 }
