@@ -185,7 +185,7 @@ struct MeshJobOutput {
   std::filesystem::path dir;                         ///< "dir": output folder (required)
   MeshOutputFormat format = MeshOutputFormat::Same;  ///< "format"
   bool per_triangle_csv = false;  ///< "per_triangle_csv": triangles.csv, quality per triangle
-  bool timings = true;            ///< "timings": false writes 0 seconds (reproducible bytes)
+  bool timings = true;            ///< "timings": false leaves run times out (reproducible bytes)
 };
 
 /// "measures": how the report measures the meshes (paper Tables 1–3).

@@ -1,0 +1,47 @@
+// Every example config in configs/ passes `seqmassage --dry-run` (the config and every input
+// checked, the plan printed, nothing written). The examples that read ../shared/data are skipped
+// with a message when that folder is absent; configs/demo.json needs nothing from outside.
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+
+#include "cli/cli_process.hpp"
+#include "io/atomic_file.hpp"
+#include "io/config.hpp"
+#include "pipeline/temp_folder.hpp"
+
+namespace fs = std::filesystem;
+
+TEST_CASE("every config in configs/ passes seqmassage --dry-run and writes nothing") {
+  const fs::path configs = fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "configs";
+  const bool shared_data = fs::is_directory(SEQMASSAGE_SHARED_DATA_DIR);
+  const sm::test::TempFolder cwd("configs_dry_run");  // stdout and stderr go here, not configs/
+  int checked = 0, skipped = 0;
+  for (const auto& entry : fs::directory_iterator(configs)) {
+    if (entry.path().extension() != ".json") continue;
+    const std::string text = sm::read_file(entry.path());
+    INFO(entry.path().string());
+    if (!shared_data && text.find("shared/data") != std::string::npos) {
+      WARN("skipped " << entry.path().filename().string()
+                      << ": it reads ../shared/data, which is absent");
+      ++skipped;
+      continue;
+    }
+    const sm::AnyJobConfig any = sm::load_any_config(entry.path());
+    const fs::path out = std::holds_alternative<sm::JobConfig>(any)
+                             ? std::get<sm::JobConfig>(any).output.dir
+                             : std::get<sm::MeshJobConfig>(any).output.dir;
+    const bool existed = fs::exists(out);
+    const sm::test::CliRun run =
+        sm::test::run_cli(cwd.path(), "--dry-run " + sm::test::shell_quote(entry.path().string()));
+    INFO(run.err);
+    CHECK(run.code == 0);
+    CHECK(run.out.find("dry run: nothing written") != std::string::npos);
+    if (!existed) CHECK_FALSE(fs::exists(out));
+    ++checked;
+  }
+  CHECK(checked + skipped >= 7);
+  CHECK(checked >= 1);  // demo.json at least
+}
