@@ -44,6 +44,11 @@ constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
        seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
        seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
 
+Commands:
+  (none)   run the job of CONFIG.json
+  measure  print the paper's measures of a mesh against a reference mesh
+  merge    combine the shards of a sequence job (--shard I/N) into the outputs of one run
+
 Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
 by its "job" key:
   sequence    corrects texture swimming in a captured mesh sequence (Mesh Massage, section 3.1):
@@ -56,7 +61,8 @@ by its "job" key:
 Options:
   -h, --help            print this help and exit
       --version         print the version and exit
-      --threads N       worker threads (overrides "threads"; 0 = one per core)
+      --threads N       worker threads (overrides "threads"; 0 = one per core; the frames
+                        in flight at once are "frames_in_flight" in the config)
       --frames A:B[:STEP]
                         process the frames with index A, A+STEP, ... before B (0-based, in
                         natural order; B may be empty for "to the end"; a single index N is
@@ -74,13 +80,27 @@ Options:
 Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
 with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
 
-Outputs (under "output.dir"): for a sequence, frames/<input name>.obj (or, with "format": "gltf",
-positions/<frame>.bin and sequence.glb), distortion/<frame>.csv (with "per_triangle_csv"),
-records/<frame>.json (what made each frame, its summary row and its outputs' SHA-256),
-summary.csv (one row per frame) and report.json; for the other jobs, <input file name> (in
-"output.format"), measures.csv (before and after), report.json and, with "per_triangle_csv",
-triangles.csv. --frames, --resume and --shard apply to sequences only. Every file is written
-to a temporary name and renamed when complete, so a killed run leaves complete files only.
+Outputs of a sequence, under "output.dir":
+  frames/<input name>.obj     the corrected frames ("format": "obj", the default)
+  positions/<frame>.bin, sequence.glb
+                              with "format": "gltf" (glTF input): each frame's corrected
+                              positions, and the corrected animation as one GLB, a morph
+                              target per frame (a shard writes positions/ only)
+  distortion/<frame>.csv      shear per triangle before and after ("per_triangle_csv")
+  colored/{before,after}/<frame>.ply
+                              the shear (eq. 8) as colours, blue to red ("colored")
+  checker/{before,after}/<frame>.obj, checker.mtl, checker.png
+                              a checkerboard texture on the template's UVs ("checker")
+  iterations.csv              the optimizer's figures, iteration by iteration ("iterations")
+  records/<frame>.json        what made each frame, its summary row, its outputs' SHA-256
+  summary.csv, report.json    one row per frame; config, totals, warnings, failures
+A shard (--shard I/N) names its own summary.shard-I-of-N.csv, report.shard-I-of-N.json and
+iterations.shard-I-of-N.csv; 'seqmassage merge' writes summary.csv, report.json,
+iterations.csv and sequence.glb from them.
+Outputs of the other jobs: <input file name> (in "output.format"), measures.csv (before and
+after), report.json and, with "per_triangle_csv", triangles.csv.
+--frames, --resume and --shard apply to sequences only. Every file is written to a temporary
+name and renamed when complete, so a killed run leaves complete files only.
 
 Exit status:
   0    every frame (or the mesh) was processed
