@@ -10,7 +10,6 @@
 //                 [--repeat R] [--data DIR]
 #include <tbb/global_control.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +21,7 @@
 #include "io/mesh_file.hpp"
 #include "massage/massage.hpp"
 #include "mesh/primitives.hpp"
+#include "mesh/timing.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
@@ -99,10 +99,9 @@ void run_case(const char* name, const TriMesh& templ, const TriMesh& reference,
   double best_setup = 0.0;
   MassageResult best;
   for (int k = 0; k < repeat; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     const Massager massager(templ, options);
-    const double setup =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double setup = seconds_since(t0);
     const Reference ref(reference, options.samples, "reference", massager.shared_topology());
     MassageResult r = massager.run(reference.V, ref);
     if (k == 0 || per_iteration(r) < per_iteration(best)) best = std::move(r);

@@ -24,7 +24,6 @@
 
 #include <tbb/global_control.h>
 
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -38,17 +37,13 @@
 #include "io/frame_folder.hpp"
 #include "io/obj.hpp"
 #include "massage/massage.hpp"
+#include "mesh/timing.hpp"
 #include "pipeline/report.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 struct ChildRun {
   bool ok = false;

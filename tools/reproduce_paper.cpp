@@ -5,7 +5,6 @@
 // nothing; it skips with a message when the data is absent.
 //
 //   reproduce_paper [--data DIR] [--out DIR] [--readme FILE | --no-readme] [--threads N]
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +20,7 @@
 #include "io/mesh_file.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
+#include "mesh/timing.hpp"
 #include "pipeline/mesh_job.hpp"
 
 using namespace sm;
@@ -53,9 +53,9 @@ std::string pct(double x) {
 Run run_job(const std::string& label, MeshJobConfig c, int threads) {
   c.threads = threads;
   c.output.timings = false;
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   Run r{label, c, run_mesh_job(plan_mesh_job(c)), 0.0};
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.seconds = seconds_since(t0);
   const MeshMeasures& b = r.result.before;
   const MeshMeasures* a = r.result.after ? &*r.result.after : nullptr;
   std::printf(

@@ -21,6 +21,7 @@
 #include "pipeline/mesh_job.hpp"
 #include "pipeline/mesh_report.hpp"
 #include "pipeline/report.hpp"
+#include "pipeline/run_text.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/shard.hpp"
 
@@ -43,6 +44,11 @@ constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
        seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
        seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
 
+Commands:
+  (none)   run the job of CONFIG.json
+  measure  print the paper's measures of a mesh against a reference mesh
+  merge    combine the shards of a sequence job (--shard I/N) into the outputs of one run
+
 Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
 by its "job" key:
   sequence    corrects texture swimming in a captured mesh sequence (Mesh Massage, section 3.1):
@@ -55,7 +61,8 @@ by its "job" key:
 Options:
   -h, --help            print this help and exit
       --version         print the version and exit
-      --threads N       worker threads (overrides "threads"; 0 = one per core)
+      --threads N       worker threads (overrides "threads"; 0 = one per core; the frames
+                        in flight at once are "frames_in_flight" in the config)
       --frames A:B[:STEP]
                         process the frames with index A, A+STEP, ... before B (0-based, in
                         natural order; B may be empty for "to the end"; a single index N is
@@ -73,13 +80,27 @@ Options:
 Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
 with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
 
-Outputs (under "output.dir"): for a sequence, frames/<input name>.obj (or, with "format": "gltf",
-positions/<frame>.bin and sequence.glb), distortion/<frame>.csv (with "per_triangle_csv"),
-records/<frame>.json (what made each frame, its summary row and its outputs' SHA-256),
-summary.csv (one row per frame) and report.json; for the other jobs, <input file name> (in
-"output.format"), measures.csv (before and after), report.json and, with "per_triangle_csv",
-triangles.csv. --frames, --resume and --shard apply to sequences only. Every file is written
-to a temporary name and renamed when complete, so a killed run leaves complete files only.
+Outputs of a sequence, under "output.dir":
+  frames/<input name>.obj     the corrected frames ("format": "obj", the default)
+  positions/<frame>.bin, sequence.glb
+                              with "format": "gltf" (glTF input): each frame's corrected
+                              positions, and the corrected animation as one GLB, a morph
+                              target per frame (a shard writes positions/ only)
+  distortion/<frame>.csv      shear per triangle before and after ("per_triangle_csv")
+  colored/{before,after}/<frame>.ply
+                              the shear (eq. 8) as colours, blue to red ("colored")
+  checker/{before,after}/<frame>.obj, checker.mtl, checker.png
+                              a checkerboard texture on the template's UVs ("checker")
+  iterations.csv              the optimizer's figures, iteration by iteration ("iterations")
+  records/<frame>.json        what made each frame, its summary row, its outputs' SHA-256
+  summary.csv, report.json    one row per frame; config, totals, warnings, failures
+A shard (--shard I/N) names its own summary.shard-I-of-N.csv, report.shard-I-of-N.json and
+iterations.shard-I-of-N.csv; 'seqmassage merge' writes summary.csv, report.json,
+iterations.csv and sequence.glb from them.
+Outputs of the other jobs: <input file name> (in "output.format"), measures.csv (before and
+after), report.json and, with "per_triangle_csv", triangles.csv.
+--frames, --resume and --shard apply to sequences only. Every file is written to a temporary
+name and renamed when complete, so a killed run leaves complete files only.
 
 Exit status:
   0    every frame (or the mesh) was processed
@@ -149,6 +170,80 @@ Exit status: 0 success, 2 usage error, 3 input error (malformed mesh, template o
 connectivity), 4 I/O error.
 )";
 
+// A usage error of `command` ("seqmassage", "seqmassage measure"): printed with a pointer to its
+// --help, exit 2.
+struct UsageError {
+  std::string command;
+  std::string message;
+};
+
+// Help or version printed: exit 0.
+struct InfoShown {};
+
+// Walks a command's arguments: options, whose values are given as "--name VALUE" or
+// "--name=VALUE", and positional arguments ("--" ends the options).
+class ArgReader {
+ public:
+  ArgReader(std::string command, int argc, char** argv)
+      : command_(std::move(command)), argc_(argc), argv_(argv) {}
+
+  // The next option's name ("--threads", "-q"), or false when none is left; the positional
+  // arguments on the way are collected.
+  bool next(std::string& option) {
+    while (++i_ < argc_) {
+      std::string a = argv_[i_];
+      inline_value_.reset();
+      if (a == "--") {
+        for (++i_; i_ < argc_; ++i_) positional_.push_back(argv_[i_]);
+        return false;
+      }
+      if (a.size() <= 1 || a[0] != '-') {
+        positional_.push_back(a);
+        continue;
+      }
+      if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
+        inline_value_ = a.substr(a.find('=') + 1);
+        a = a.substr(0, a.find('='));
+      }
+      option = a;
+      return true;
+    }
+    return false;
+  }
+  bool has_value() const { return inline_value_.has_value(); }
+  // The option's value, inline or the next argument; nullopt if there is none.
+  std::optional<std::string> take() {
+    if (inline_value_) return inline_value_;
+    if (i_ + 1 < argc_) return std::string(argv_[++i_]);
+    return std::nullopt;
+  }
+  // The option's value; a usage error `missing` if there is none.
+  std::string value(const std::string& missing) {
+    const auto v = take();
+    if (!v) fail(missing);
+    return *v;
+  }
+  [[noreturn]] void fail(const std::string& message) const { throw UsageError{command_, message}; }
+  [[noreturn]] void unknown() const { fail("unknown option '" + std::string(argv_[i_]) + "'"); }
+  const std::vector<std::string>& positional() const { return positional_; }
+
+ private:
+  std::string command_;
+  int argc_;
+  char** argv_;
+  int i_ = 0;
+  std::optional<std::string> inline_value_;
+  std::vector<std::string> positional_;
+};
+
+// --threads N: an integer in [0, 4096].
+int thread_count(const ArgReader& args, const std::string& v) {
+  if (v.empty() || v.size() > 4 || v.find_first_not_of("0123456789") != std::string::npos ||
+      std::stoi(v) > 4096)
+    args.fail("--threads: expected an integer in [0, 4096], got \"" + v + "\"");
+  return std::stoi(v);
+}
+
 struct Args {
   fs::path config;
   std::optional<int> threads;
@@ -159,78 +254,46 @@ struct Args {
   bool quiet = false;
 };
 
-// nullopt: exit with `exit_code` (help, version, usage error).
-std::optional<Args> parse_args(int argc, char** argv, int& exit_code) {
-  Args args;
-  std::vector<std::string> positional;
-  auto usage = [&](const std::string& message) {
-    std::cerr << "seqmassage: " << message << "\nTry 'seqmassage --help'.\n";
-    exit_code = kUsage;
-    return std::nullopt;
-  };
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    std::optional<std::string> value;
-    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-      value = a.substr(a.find('=') + 1);
-      a = a.substr(0, a.find('='));
-    }
-    auto take = [&]() -> std::optional<std::string> {
-      if (value) return value;
-      if (i + 1 < argc) return std::string(argv[++i]);
-      return std::nullopt;
-    };
+Args parse_args(int argc, char** argv) {
+  Args out;
+  ArgReader args("seqmassage", argc, argv);
+  for (std::string a; args.next(a);) {
     if (a == "-h" || a == "--help") {
       std::cout << kHelp;
-      exit_code = kOk;
-      return std::nullopt;
+      throw InfoShown{};
     } else if (a == "--version") {
       const nlohmann::json v = sm::version_info();
       std::cout << "seqmassage " << v["seqmassage"].get<std::string>() << " (Eigen "
                 << v["eigen"].get<std::string>() << ", oneTBB " << v["onetbb"].get<std::string>()
                 << ", nlohmann-json " << v["nlohmann_json"].get<std::string>() << ", "
                 << v["compiler"].get<std::string>() << ")\n";
-      exit_code = kOk;
-      return std::nullopt;
+      throw InfoShown{};
     } else if (a == "--threads") {
-      const auto v = take();
-      if (!v) return usage("--threads needs a value");
-      if (v->empty() || v->size() > 4 || v->find_first_not_of("0123456789") != std::string::npos)
-        return usage("--threads: expected an integer in [0, 4096], got \"" + *v + "\"");
-      const int n = std::stoi(*v);
-      if (n > 4096) return usage("--threads: expected an integer in [0, 4096], got \"" + *v + "\"");
-      args.threads = n;
+      out.threads = thread_count(args, args.value("--threads needs a value"));
     } else if (a == "--frames") {
-      const auto v = take();
-      if (!v) return usage("--frames needs a value A:B[:STEP]");
-      args.frames = *v;
+      out.frames = args.value("--frames needs a value A:B[:STEP]");
     } else if (a == "--shard") {
-      const auto v = take();
-      if (!v) return usage("--shard needs a value I/N");
-      args.shard = *v;
-    } else if (a == "--resume" && !value) {
-      args.resume = true;
-    } else if (a == "--dry-run" && !value) {
-      args.dry_run = true;
-    } else if ((a == "-q" || a == "--quiet") && !value) {
-      args.quiet = true;
-    } else if (a == "--") {
-      for (++i; i < argc; ++i) positional.push_back(argv[i]);
-    } else if (a.size() > 1 && a[0] == '-') {
-      return usage("unknown option '" + std::string(argv[i]) + "'");
+      out.shard = args.value("--shard needs a value I/N");
+    } else if (a == "--resume" && !args.has_value()) {
+      out.resume = true;
+    } else if (a == "--dry-run" && !args.has_value()) {
+      out.dry_run = true;
+    } else if ((a == "-q" || a == "--quiet") && !args.has_value()) {
+      out.quiet = true;
     } else {
-      positional.push_back(a);
+      args.unknown();
     }
   }
-  if (positional.empty()) return usage("missing the config file (seqmassage CONFIG.json)");
+  const std::vector<std::string>& positional = args.positional();
+  if (positional.empty()) args.fail("missing the config file (seqmassage CONFIG.json)");
   if (positional.size() > 1)
-    return usage("one config file only, got " + std::to_string(positional.size()));
-  args.config = positional[0];
+    args.fail("one config file only, got " + std::to_string(positional.size()));
+  out.config = positional[0];
   std::error_code ec;
-  if (!fs::is_regular_file(args.config, ec))
-    return usage("config file '" + args.config.string() + "' " +
-                 (fs::exists(args.config, ec) ? "is not a file" : "does not exist"));
-  return args;
+  if (!fs::is_regular_file(out.config, ec))
+    args.fail("config file '" + out.config.string() + "' " +
+              (fs::exists(out.config, ec) ? "is not a file" : "does not exist"));
+  return out;
 }
 
 std::atomic<bool> g_interrupted{false};
@@ -255,23 +318,6 @@ void catch_stop_signals(bool on) {
   ::sigaction(SIGTERM, &action, nullptr);
 }
 
-std::string clock_text(double seconds) {
-  if (!(seconds >= 0) || seconds > 359999) return "--:--";
-  const long s = static_cast<long>(seconds + 0.5);
-  char buffer[32];
-  if (s >= 3600)
-    std::snprintf(buffer, sizeof buffer, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-  else
-    std::snprintf(buffer, sizeof buffer, "%ld:%02ld", s / 60, s % 60);
-  return buffer;
-}
-
-std::string fixed(double x, int digits) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", digits, x);
-  return buffer;
-}
-
 std::string shown(const fs::path& p) {
   std::error_code ec;
   const fs::path rel = fs::proximate(p, ec);
@@ -287,28 +333,15 @@ class Progress {
   void frame(const sm::FrameSummary& f, int done, int total, double elapsed) {
     if (f.status == sm::FrameStatus::Failed) {
       clear();
-      std::cerr << "seqmassage: frame " << f.frame << " (" << f.file << ") failed, "
-                << (on_failure_ == sm::OnFailure::Skip ? "not written" : "written unchanged")
-                << (f.resumed ? " (in an earlier run)" : "") << ": " << f.failure << "\n";
+      std::cerr << "seqmassage: " << sm::frame_failure_text(f, on_failure_) << "\n";
     }
     if (quiet_) return;
-    const double rate = elapsed > 0 ? done / elapsed : 0.0;
-    const double eta = rate > 0 ? (total - done) / rate : -1.0;
     if (terminal_) {
-      const int width = 30;
-      const int filled = total > 0 ? width * done / total : width;
-      std::string bar(filled, '#');
-      bar += std::string(width - filled, '.');
-      std::cerr << "\r[" << bar << "] " << done << "/" << total << " frames  " << fixed(rate, 2)
-                << " frames/s  ETA " << clock_text(eta) << "   " << std::flush;
+      std::cerr << "\r" << sm::progress_bar_text(done, total, elapsed) << "   " << std::flush;
       drawn_ = true;
       if (done == total) clear();
     } else {
-      std::cerr << "frame " << done << "/" << total << " " << f.file << ": "
-                << sm::status_name(f.status) << (f.resumed ? " (kept from an earlier run)" : "")
-                << ", mean shear " << fixed(f.shear_before.mean, 4) << " -> "
-                << fixed(f.shear_after.mean, 4) << ", " << f.iterations << " iterations, "
-                << fixed(rate, 2) << " frames/s, ETA " << clock_text(eta) << "\n";
+      std::cerr << sm::frame_progress_text(f, done, total, elapsed) << "\n";
     }
   }
 
@@ -323,6 +356,13 @@ class Progress {
   sm::OnFailure on_failure_;
   bool drawn_ = false;
 };
+
+// "results: DIR/ (a, b, c)" on stdout.
+void print_results(const fs::path& dir, const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+  std::cout << "results: " << shown(dir) << "/ (" << list << ")\n";
+}
 
 int run_mesh_job(const Args& args, sm::MeshJobConfig config);
 
@@ -342,12 +382,7 @@ int run(const Args& args) {
   }
   if (!args.quiet) {
     for (const std::string& w : plan.warnings) std::cerr << "seqmassage: warning: " << w << "\n";
-    std::cerr << "seqmassage: " << plan.run_frames.size() << " frames";
-    if (plan.config.shard.sharded())
-      std::cerr << " (" << sm::shard_label(plan.config.shard) << " of " << plan.selected.size()
-                << " selected)";
-    std::cerr << ", template " << plan.template_source << ", " << plan.threads << " threads"
-              << (plan.config.resume ? ", resuming" : "") << "\n";
+    std::cerr << "seqmassage: " << sm::run_start_text(plan) << "\n";
   }
 
   Progress progress(args.quiet, ::isatty(STDERR_FILENO) == 1, plan.config.output.on_failure);
@@ -363,32 +398,11 @@ int run(const Args& args) {
 
   const fs::path& out = plan.config.output.dir;
   const std::string summary = sm::summary_file_name(plan.config.shard);
-  const std::string report = sm::report_file_name(plan.config.shard);
   if (!args.quiet) {
-    double before = 0, after = 0;
-    for (const sm::FrameSummary& f : result.frames) {
-      before += f.shear_before.mean;
-      after += f.shear_after.mean;
-    }
-    const double n = std::max<size_t>(1, result.frames.size());
-    if (plan.config.resume) {
-      std::cerr << "seqmassage: resume: " << result.resumed << " frames kept from earlier runs, "
-                << result.frames.size() - size_t(result.resumed) << " processed";
-      std::string why;
-      for (const auto& [reason, count] : result.redone)
-        why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + reason;
-      std::cerr << (why.empty() ? "" : " (" + why + ")") << "\n";
-    }
-    std::cerr << "seqmassage: " << result.frames.size() << " frames in " << fixed(result.seconds, 1)
-              << " s (" << result.failed << " failed), mean shear " << fixed(before / n, 4)
-              << " -> " << fixed(after / n, 4) << "\n";
-    const bool glb = plan.config.output.format == sm::OutputFormat::Gltf;
-    const bool sharded = plan.config.shard.sharded();
-    std::cout << "results: " << shown(out) << "/ ("
-              << (glb ? (sharded ? "positions/, " : "sequence.glb, ") : "frames/, ")
-              << (plan.config.output.per_triangle_csv ? "distortion/, " : "") << summary << ", "
-              << report << ")\n";
-    if (sharded && !result.interrupted)
+    if (plan.config.resume) std::cerr << "seqmassage: " << sm::resume_text(result) << "\n";
+    std::cerr << "seqmassage: " << sm::run_end_text(result) << "\n";
+    print_results(out, sm::run_output_names(plan, result));
+    if (plan.config.shard.sharded() && !result.interrupted)
       std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }
   if (result.interrupted) {
@@ -407,7 +421,7 @@ int run(const Args& args) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The single-mesh jobs (remesh, crossparam, smooth) and the measure command.
+// The single-mesh jobs (remesh, crossparam, smooth) and the measure and merge commands.
 
 int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
   for (const auto& [given, option] :
@@ -424,30 +438,16 @@ int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
   }
   if (!args.quiet) {
     for (const std::string& w : plan.warnings) std::cerr << "seqmassage: warning: " << w << "\n";
-    std::cerr << "seqmassage: " << sm::job_name(config.job) << " " << plan.mesh_name << " ("
-              << plan.mesh.num_vertices() << " vertices), " << config.massage.iterations
-              << " iterations, " << plan.threads << " threads\n";
+    std::cerr << "seqmassage: " << sm::mesh_job_start_text(plan) << "\n";
   }
   const sm::MeshJobResult result = sm::run_mesh_job(plan);
   for (size_t i = plan.warnings.size(); i < result.warnings.size(); ++i)
     std::cerr << "seqmassage: warning: " << result.warnings[i] << "\n";
   const fs::path& out = plan.config.output.dir;
   if (!args.quiet) {
-    std::vector<sm::MeasureRow> rows = {
-        {"before", plan.mesh_name, plan.reference_name, &result.before}};
-    if (result.after)
-      rows.push_back({"after", plan.mesh_name, plan.reference_name, &*result.after});
-    const sm::QualitySummary reference_quality =
-        sm::summarize_quality(sm::radius_ratio(plan.reference));
-    std::cout << sm::format_measures_table(
-        rows, config.job == sm::JobKind::Remesh ? &reference_quality : nullptr, plan.template_name);
-    std::cerr << "seqmassage: " << result.massage.iterations.size() << " iterations in "
-              << fixed(result.seconds_massage, 2) << " s (whole run " << fixed(result.seconds, 2)
-              << " s)\n";
-    std::cout << "results: " << shown(out) << "/ ("
-              << (result.ok() ? plan.output_mesh.filename().string() + ", " : "")
-              << "measures.csv, report.json"
-              << (plan.config.output.per_triangle_csv ? ", triangles.csv" : "") << ")\n";
+    std::cout << sm::format_mesh_job_table(plan, result);
+    std::cerr << "seqmassage: " << sm::mesh_job_end_text(result) << "\n";
+    print_results(out, sm::mesh_job_output_names(plan, result));
   }
   if (!result.ok()) {
     std::cerr << "seqmassage: the optimizer failed, no mesh written: " << result.massage.failure
@@ -457,113 +457,69 @@ int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
   return kOk;
 }
 
-// Parses "seqmassage measure ..." (argv[0] is "measure"); nullopt: exit with `exit_code`.
-std::optional<sm::MeasureFilesRequest> parse_measure_args(int argc, char** argv, int& exit_code) {
-  sm::MeasureFilesRequest args;
-  std::vector<std::string> positional;
-  auto usage = [&](const std::string& message) {
-    std::cerr << "seqmassage measure: " << message << "\nTry 'seqmassage measure --help'.\n";
-    exit_code = kUsage;
-    return std::nullopt;
-  };
-  auto number = [](const std::string& text, double& out) {
+// "seqmassage measure ..." (argv[0] is "measure").
+sm::MeasureFilesRequest parse_measure_args(int argc, char** argv) {
+  sm::MeasureFilesRequest out;
+  ArgReader args("seqmassage measure", argc, argv);
+  // A finite number in (low, high) after --name, else a usage error naming `range`.
+  auto number = [&](const std::string& name, double low, double high, const std::string& range) {
+    const std::string v = args.take().value_or("");
     try {
       size_t used = 0;
-      out = std::stod(text, &used);
-      return used == text.size() && std::isfinite(out);
+      const double x = std::stod(v, &used);
+      if (used == v.size() && std::isfinite(x) && x > low && x < high) return x;
     } catch (const std::exception&) {
-      return false;
     }
+    args.fail(name + ": expected a number " + range + ", got \"" + v + "\"");
   };
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    std::optional<std::string> value;
-    if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-      value = a.substr(a.find('=') + 1);
-      a = a.substr(0, a.find('='));
-    }
-    auto take = [&]() -> std::optional<std::string> {
-      if (value) return value;
-      if (i + 1 < argc) return std::string(argv[++i]);
-      return std::nullopt;
-    };
+  for (std::string a; args.next(a);) {
     if (a == "-h" || a == "--help") {
       std::cout << kMeasureHelp;
-      exit_code = kOk;
-      return std::nullopt;
+      throw InfoShown{};
     } else if (a == "--template" || a == "--csv" || a == "--json") {
-      const auto v = take();
-      if (!v || v->empty()) return usage(a + " needs a file name");
-      (a == "--template" ? args.templ : a == "--csv" ? args.csv : args.json) = *v;
+      const std::string v = args.take().value_or("");
+      if (v.empty()) args.fail(a + " needs a file name");
+      (a == "--template" ? out.templ : a == "--csv" ? out.csv : out.json) = v;
     } else if (a == "--spacing") {
-      const auto v = take();
-      double x = 0;
-      if (!v || !number(*v, x) || !(x > 0))
-        return usage("--spacing: expected a number > 0, got \"" + v.value_or("") + "\"");
-      args.options.spacing = x;
+      out.options.spacing = number(a, 0, INFINITY, "> 0");
     } else if (a == "--feature-angle") {
-      const auto v = take();
-      double x = 0;
-      if (!v || !number(*v, x) || !(x > 0 && x < 180))
-        return usage("--feature-angle: expected a number in (0, 180), got \"" + v.value_or("") +
-                     "\"");
-      args.options.feature_angle = x;
+      out.options.feature_angle = number(a, 0, 180, "in (0, 180)");
     } else if (a == "--threads") {
-      const auto v = take();
-      if (!v || v->empty() || v->size() > 4 ||
-          v->find_first_not_of("0123456789") != std::string::npos || std::stoi(*v) > 4096)
-        return usage("--threads: expected an integer in [0, 4096], got \"" + v.value_or("") + "\"");
-      args.threads = std::stoi(*v);
-    } else if (a == "--") {
-      for (++i; i < argc; ++i) positional.push_back(argv[i]);
-    } else if (a.size() > 1 && a[0] == '-') {
-      return usage("unknown option '" + std::string(argv[i]) + "'");
+      out.threads = thread_count(args, args.take().value_or(""));
     } else {
-      positional.push_back(a);
+      args.unknown();
     }
   }
-  if (positional.size() != 2)
-    return usage("expected two mesh files, MESH and REFERENCE, got " +
-                 std::to_string(positional.size()));
-  args.mesh = positional[0];
-  args.reference = positional[1];
-  return args;
+  if (args.positional().size() != 2)
+    args.fail("expected two mesh files, MESH and REFERENCE, got " +
+              std::to_string(args.positional().size()));
+  out.mesh = args.positional()[0];
+  out.reference = args.positional()[1];
+  return out;
 }
 
 // "seqmassage merge [options] OUTPUT_DIR" (argv[0] is "merge").
 int run_merge_command(int argc, char** argv) {
   bool quiet = false;
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
+  ArgReader args("seqmassage merge", argc, argv);
+  for (std::string a; args.next(a);) {
+    if ((a == "-h" || a == "--help") && !args.has_value()) {
       std::cout << kMergeHelp;
       return kOk;
-    } else if (a == "-q" || a == "--quiet") {
+    } else if ((a == "-q" || a == "--quiet") && !args.has_value()) {
       quiet = true;
-    } else if (a == "--") {
-      for (++i; i < argc; ++i) positional.push_back(argv[i]);
-    } else if (a.size() > 1 && a[0] == '-') {
-      std::cerr << "seqmassage merge: unknown option '" << a
-                << "'\nTry 'seqmassage merge --help'.\n";
-      return kUsage;
     } else {
-      positional.push_back(a);
+      args.unknown();
     }
   }
-  if (positional.size() != 1) {
-    std::cerr << "seqmassage merge: expected one output folder, got " << positional.size()
-              << "\nTry 'seqmassage merge --help'.\n";
-    return kUsage;
-  }
-  const fs::path dir = positional[0];
+  if (args.positional().size() != 1)
+    args.fail("expected one output folder, got " + std::to_string(args.positional().size()));
+  const fs::path dir = args.positional()[0];
   const sm::MergeResult result = sm::merge_shards(dir);
   if (!quiet) {
     std::cerr << "seqmassage: merged " << result.shards << " shards, " << result.frames.size()
               << " frames (" << result.failed << " failed)\n";
-    std::string files;
-    for (const std::string& f : result.written) files += (files.empty() ? "" : ", ") + f;
-    std::cout << "results: " << shown(dir) << "/ (" << files << ")\n";
+    print_results(dir, result.written);
   }
   if (result.failed > 0) {
     for (const sm::FrameSummary& f : result.frames)
@@ -575,16 +531,16 @@ int run_merge_command(int argc, char** argv) {
   return kOk;
 }
 
-int run_measure(const sm::MeasureFilesRequest& request) {
-  std::cout << sm::measure_files(request).table;
-  return kOk;
-}
-
 // Runs `body`, mapping the library's exceptions to exit codes (the only place that catches).
 template <class Body>
 int guarded(Body&& body, const std::string& config_name) {
   try {
     return body();
+  } catch (const UsageError& e) {
+    std::cerr << e.command << ": " << e.message << "\nTry '" << e.command << " --help'.\n";
+    return kUsage;
+  } catch (const InfoShown&) {
+    return kOk;
   } catch (const sm::ConfigError& e) {
     const std::string what = e.what();  // command-line options name themselves
     std::cerr << "seqmassage: "
@@ -609,15 +565,21 @@ int guarded(Body&& body, const std::string& config_name) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int exit_code = kOk;
-  if (argc > 1 && std::string(argv[1]) == "merge")
-    return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
-  if (argc > 1 && std::string(argv[1]) == "measure") {
-    const auto args = parse_measure_args(argc - 1, argv + 1, exit_code);
-    if (!args) return exit_code;
-    return guarded([&] { return run_measure(*args); }, "");
-  }
-  const std::optional<Args> args = parse_args(argc, argv, exit_code);
-  if (!args) return exit_code;
-  return guarded([&] { return run(*args); }, args->config.string());
+  const std::string command = argc > 1 ? argv[1] : "";
+  if (command == "merge") return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
+  if (command == "measure")
+    return guarded(
+        [&] {
+          std::cout << sm::measure_files(parse_measure_args(argc - 1, argv + 1)).table;
+          return int(kOk);
+        },
+        "");
+  std::string config_name;
+  return guarded(
+      [&] {
+        const Args args = parse_args(argc, argv);
+        config_name = args.config.string();
+        return run(args);
+      },
+      config_name);
 }

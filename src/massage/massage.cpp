@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -11,15 +10,10 @@
 #include "massage/linear_solver.hpp"
 #include "massage/system.hpp"
 #include "mesh/errors.hpp"
+#include "mesh/timing.hpp"
 
 namespace sm {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void check_options(const MassageOptions& o, int n) {
   auto bad = [](const std::string& key, const std::string& why) {

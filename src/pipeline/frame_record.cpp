@@ -8,18 +8,13 @@
 #include "io/sha256.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/report.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-
-// Exact doubles: finite values as JSON numbers (shortest round trip), others as "inf", "-inf",
-// "nan" (JSON has no such numbers).
-json number(double x) {
-  return std::isfinite(x) ? json(x) : json(format_number(x));
-}
 
 [[noreturn]] void bad(const std::string& key, const std::string& what) {
   throw InputError("frame record: " + key + ": " + what);
@@ -56,9 +51,9 @@ T get(const json& j, const std::string& key, const std::string& where) {
 }
 
 json to_json(const DistortionSummary& d) {
-  return {{"max", number(d.max)},
-          {"mean", number(d.mean)},
-          {"p95", number(d.p95)},
+  return {{"max", json_number(d.max)},
+          {"mean", json_number(d.mean)},
+          {"p95", json_number(d.p95)},
           {"infinite", d.infinite}};
 }
 
@@ -69,16 +64,6 @@ DistortionSummary distortion_from_json(const json& j, const std::string& where) 
   d.p95 = get_double(j, "p95", where);
   d.infinite = get<int>(j, "infinite", where);
   return d;
-}
-
-json to_json(const DistanceStats& d) {
-  return {{"max", number(d.max)},
-          {"mean", number(d.mean)},
-          {"rms", number(d.rms)},
-          {"max_rel", number(d.max_rel)},
-          {"mean_rel", number(d.mean_rel)},
-          {"rms_rel", number(d.rms_rel)},
-          {"samples", d.samples}};
 }
 
 DistanceStats distance_from_json(const json& j, const std::string& where) {
@@ -127,24 +112,24 @@ json to_json(const FrameSummary& s) {
   json j;
   j["frame"] = s.frame;
   j["file"] = s.file;
-  j["time"] = s.time ? number(*s.time) : json(nullptr);
+  j["time"] = s.time ? json_number(*s.time) : json(nullptr);
   j["vertices"] = s.vertices;
   j["triangles"] = s.triangles;
   j["shear_before"] = to_json(s.shear_before);
   j["shear_after"] = to_json(s.shear_after);
-  j["out_to_in"] = to_json(s.out_to_in);
-  j["in_to_out"] = to_json(s.in_to_out);
+  j["out_to_in"] = distance_json(s.out_to_in);
+  j["in_to_out"] = distance_json(s.in_to_out);
   j["iterations"] = s.iterations;
-  j["seconds"] = number(s.seconds);
+  j["seconds"] = json_number(s.seconds);
   j["status"] = status_name(s.status);
   j["failure"] = s.failure;
   j["folded_triangles"] = s.folded_triangles;
   if (s.ground_truth) {
     const GroundTruthError& g = *s.ground_truth;
-    j["ground_truth"] = {{"mean_before", number(g.mean_before)},
-                         {"max_before", number(g.max_before)},
-                         {"mean_after", number(g.mean_after)},
-                         {"max_after", number(g.max_after)}};
+    j["ground_truth"] = {{"mean_before", json_number(g.mean_before)},
+                         {"max_before", json_number(g.max_before)},
+                         {"mean_after", json_number(g.mean_after)},
+                         {"max_after", json_number(g.max_after)}};
   } else {
     j["ground_truth"] = nullptr;
   }

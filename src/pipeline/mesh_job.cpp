@@ -4,7 +4,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <set>
 #include <sstream>
 
@@ -14,18 +13,13 @@
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh/timing.hpp"
 #include "pipeline/mesh_report.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::string lower_extension(const fs::path& p) {
   std::string ext = p.extension().string();

@@ -6,25 +6,12 @@
 
 #include "io/csv.hpp"
 #include "pipeline/report.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace sm {
 using json = nlohmann::json;
 
 namespace {
-
-json number(double x) {
-  return std::isfinite(x) ? json(x) : json(format_number(x));
-}
-
-json distance_json(const DistanceStats& d) {
-  return {{"max", number(d.max)},
-          {"mean", number(d.mean)},
-          {"rms", number(d.rms)},
-          {"max_rel", number(d.max_rel)},
-          {"mean_rel", number(d.mean_rel)},
-          {"rms_rel", number(d.rms_rel)},
-          {"samples", d.samples}};
-}
 
 std::string bin_name(double edge) {
   return "shear_hist_" + format_number(edge);
@@ -230,22 +217,42 @@ std::string format_measures_table(const std::vector<MeasureRow>& rows,
   return out.str();
 }
 
+std::string format_mesh_job_table(const MeshJobPlan& plan, const MeshJobResult& result) {
+  std::vector<MeasureRow> rows = {{"before", plan.mesh_name, plan.reference_name, &result.before}};
+  if (result.after) rows.push_back({"after", plan.mesh_name, plan.reference_name, &*result.after});
+  if (plan.config.job != JobKind::Remesh)
+    return format_measures_table(rows, nullptr, plan.template_name);
+  const QualitySummary reference_quality = summarize_quality(radius_ratio(plan.reference));
+  return format_measures_table(rows, &reference_quality, plan.template_name);
+}
+
+std::vector<std::string> mesh_job_output_names(const MeshJobPlan& plan,
+                                               const MeshJobResult& result) {
+  std::vector<std::string> names;
+  if (result.ok()) names.push_back(plan.output_mesh.filename().string());
+  names.push_back("measures.csv");
+  names.push_back("report.json");
+  if (plan.config.output.per_triangle_csv) names.push_back("triangles.csv");
+  return names;
+}
+
 json measures_json(const MeshMeasures& m) {
-  json j = {{"vertices", m.vertices},
-            {"triangles", m.triangles},
-            {"dist_mesh_to_ref", distance_json(m.to_reference)},
-            {"dist_ref_to_mesh", distance_json(m.from_reference)},
-            {"hausdorff", number(m.hausdorff)},
-            {"hausdorff_rel", number(m.hausdorff_rel)},
-            {"diagonal", number(m.diagonal)},
-            {"radius_ratio",
-             {{"min", number(m.radius_ratio.min)}, {"mean", number(m.radius_ratio.mean)}}}};
+  json j = {
+      {"vertices", m.vertices},
+      {"triangles", m.triangles},
+      {"dist_mesh_to_ref", distance_json(m.to_reference)},
+      {"dist_ref_to_mesh", distance_json(m.from_reference)},
+      {"hausdorff", json_number(m.hausdorff)},
+      {"hausdorff_rel", json_number(m.hausdorff_rel)},
+      {"diagonal", json_number(m.diagonal)},
+      {"radius_ratio",
+       {{"min", json_number(m.radius_ratio.min)}, {"mean", json_number(m.radius_ratio.mean)}}}};
   if (m.shear) {
     json bins = json::array();
-    for (double e : m.shear->bins) bins.push_back(number(e));
-    j["shear"] = {{"max", number(m.shear->summary.max)},
-                  {"mean", number(m.shear->summary.mean)},
-                  {"p95", number(m.shear->summary.p95)},
+    for (double e : m.shear->bins) bins.push_back(json_number(e));
+    j["shear"] = {{"max", json_number(m.shear->summary.max)},
+                  {"mean", json_number(m.shear->summary.mean)},
+                  {"p95", json_number(m.shear->summary.p95)},
                   {"degenerate", m.shear->summary.infinite},
                   {"histogram", {{"bins", bins}, {"counts", m.shear->counts}}}};
   } else {
@@ -253,11 +260,11 @@ json measures_json(const MeshMeasures& m) {
   }
   const FeatureMeasures& f = m.features;
   j["features"] = {{"edges", f.edges},
-                   {"threshold_degrees", number(f.threshold_degrees)},
+                   {"threshold_degrees", json_number(f.threshold_degrees)},
                    {"distance", distance_json(f.distance)}};
   if (f.dihedral_change_max) {
-    j["features"]["dihedral_change_max"] = number(*f.dihedral_change_max);
-    j["features"]["dihedral_change_mean"] = number(*f.dihedral_change_mean);
+    j["features"]["dihedral_change_max"] = json_number(*f.dihedral_change_max);
+    j["features"]["dihedral_change_mean"] = json_number(*f.dihedral_change_mean);
     j["features"]["flattened"] = *f.flattened;
   }
   return j;
@@ -301,8 +308,8 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
   inputs["reference"]["file"] =
       c.job == JobKind::Remesh ? json(c.input.reference.string()) : json("the mesh as loaded");
   const QualitySummary reference_quality = summarize_quality(radius_ratio(plan.reference));
-  inputs["reference"]["radius_ratio"] = {{"min", number(reference_quality.min)},
-                                         {"mean", number(reference_quality.mean)}};
+  inputs["reference"]["radius_ratio"] = {{"min", json_number(reference_quality.min)},
+                                         {"mean", json_number(reference_quality.mean)}};
   inputs["template"] = counts(plan.templ);
   inputs["template"]["file"] =
       c.job == JobKind::Crossparam ? json(c.template_mesh.string()) : json("the mesh itself");
@@ -314,17 +321,17 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
   json iterations = json::array();
   for (const IterationStats& it : m.iterations) {
     json row = {{"iteration", it.iteration},
-                {"mu", number(it.mu)},
-                {"energy", number(it.energy)},
-                {"max_dist_m_to_n", number(it.max_dist_m_to_n)},
-                {"rms_dist_m_to_n", number(it.rms_dist_m_to_n)},
-                {"max_dist_n_to_m", number(it.max_dist_n_to_m)},
-                {"rms_dist_n_to_m", number(it.rms_dist_n_to_m)},
-                {"max_move", number(it.max_move)},
+                {"mu", json_number(it.mu)},
+                {"energy", json_number(it.energy)},
+                {"max_dist_m_to_n", json_number(it.max_dist_m_to_n)},
+                {"rms_dist_m_to_n", json_number(it.rms_dist_m_to_n)},
+                {"max_dist_n_to_m", json_number(it.max_dist_n_to_m)},
+                {"rms_dist_n_to_m", json_number(it.rms_dist_n_to_m)},
+                {"max_move", json_number(it.max_move)},
                 {"solver_iterations", it.solver_iterations},
                 {"exact_queries", it.exact_queries}};
     if (c.output.timings)
-      row["seconds"] = number(it.seconds_closest + it.seconds_assemble + it.seconds_solve);
+      row["seconds"] = json_number(it.seconds_closest + it.seconds_assemble + it.seconds_solve);
     iterations.push_back(row);
   }
   r["massage"] = {{"ok", m.ok},
@@ -338,7 +345,7 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
                    {"after", result.after ? measures_json(*result.after) : json(nullptr)}};
   if (result.after && result.before.hausdorff > 0.0)
     r["measures"]["hausdorff_change"] =
-        number(result.after->hausdorff / result.before.hausdorff - 1.0);
+        json_number(result.after->hausdorff / result.before.hausdorff - 1.0);
   r["warnings"] = result.warnings;
   r["outputs"] = {
       {"dir", c.output.dir.string()},

@@ -39,6 +39,15 @@ std::string format_measures_table(const std::vector<MeasureRow>& rows,
                                   const QualitySummary* reference_quality = nullptr,
                                   const std::string& template_name = "");
 
+/// The table a single-mesh job prints: format_measures_table of the mesh before and, unless the
+/// optimizer failed, after; with the reference's radius ratio for a remesh.
+std::string format_mesh_job_table(const MeshJobPlan& plan, const MeshJobResult& result);
+
+/// What a single-mesh job wrote, relative to output.dir: the mesh (unless the optimizer failed),
+/// measures.csv, report.json and, with "per_triangle_csv", triangles.csv.
+std::vector<std::string> mesh_job_output_names(const MeshJobPlan& plan,
+                                               const MeshJobResult& result);
+
 /// The measures of one mesh as JSON (non-finite numbers as "inf"/"nan" strings).
 nlohmann::json measures_json(const MeshMeasures& measures);
 

@@ -7,6 +7,7 @@
 
 #include "io/csv.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/report_json.hpp"
 #include "pipeline/shard.hpp"
 
 #ifndef SEQMASSAGE_VERSION
@@ -15,15 +16,6 @@
 
 namespace sm {
 using json = nlohmann::json;
-
-namespace {
-
-// Finite numbers as JSON numbers; infinity and NaN as the strings CSV uses ("inf", "nan").
-json number(double x) {
-  return std::isfinite(x) ? json(x) : json(format_number(x));
-}
-
-}  // namespace
 
 std::vector<std::string> summary_columns() {
   return {"frame",
@@ -197,16 +189,16 @@ json make_report(const ReportHeader& header, const std::vector<FrameSummary>& fr
                  {"failed", failed},
                  {"iterations", iterations},
                  {"shear_before",
-                  {{"max", number(max_before)},
-                   {"mean_of_means", number(mean_before / n)},
-                   {"mean_of_p95", number(p95_before / n)}}},
+                  {{"max", json_number(max_before)},
+                   {"mean_of_means", json_number(mean_before / n)},
+                   {"mean_of_p95", json_number(p95_before / n)}}},
                  {"shear_after",
-                  {{"max", number(max_after)},
-                   {"mean_of_means", number(mean_after / n)},
-                   {"mean_of_p95", number(p95_after / n)}}},
-                 {"dist_out_to_in_max", number(out_to_in)},
-                 {"dist_in_to_out_max", number(in_to_out)},
-                 {"hausdorff_max", number(std::max(out_to_in, in_to_out))}};
+                  {{"max", json_number(max_after)},
+                   {"mean_of_means", json_number(mean_after / n)},
+                   {"mean_of_p95", json_number(p95_after / n)}}},
+                 {"dist_out_to_in_max", json_number(out_to_in)},
+                 {"dist_in_to_out_max", json_number(in_to_out)},
+                 {"hausdorff_max", json_number(std::max(out_to_in, in_to_out))}};
   r["interrupted"] = interrupted;
 
   if (!header.ground_truth.empty()) {
@@ -218,17 +210,17 @@ json make_report(const ReportHeader& header, const std::vector<FrameSummary>& fr
       before += g.mean_before;
       after += g.mean_after;
       list.push_back({{"frame", f.frame},
-                      {"mean_before", number(g.mean_before)},
-                      {"max_before", number(g.max_before)},
-                      {"mean_after", number(g.mean_after)},
-                      {"max_after", number(g.max_after)}});
+                      {"mean_before", json_number(g.mean_before)},
+                      {"max_before", json_number(g.max_before)},
+                      {"mean_after", json_number(g.mean_after)},
+                      {"max_after", json_number(g.max_after)}});
     }
     r["ground_truth"] = {
         {"folder", header.ground_truth},
         {"unit", "mean edge length of the template"},
         {"what", "distance of every vertex to its position on the clean (undrifted) frame"},
-        {"mean_before", number(before / n)},
-        {"mean_after", number(after / n)},
+        {"mean_before", json_number(before / n)},
+        {"mean_after", json_number(after / n)},
         {"frames", list}};
   }
 
@@ -241,6 +233,38 @@ json make_report(const ReportHeader& header, const std::vector<FrameSummary>& fr
   r["outputs"] = header.outputs;
   if (!run.is_null()) r["run"] = run;
   return r;
+}
+
+ShearMeans mean_shear(const std::vector<FrameSummary>& frames) {
+  ShearMeans m;
+  for (const FrameSummary& f : frames) {
+    m.before += f.shear_before.mean;
+    m.after += f.shear_after.mean;
+  }
+  const double n = std::max<size_t>(1, frames.size());
+  m.before /= n;
+  m.after /= n;
+  return m;
+}
+
+std::vector<std::string> run_output_names(const SequencePlan& plan, const SequenceResult& result) {
+  const JobConfig& c = plan.config;
+  std::vector<std::string> names;
+  if (c.output.format == OutputFormat::Gltf) {
+    names.push_back("positions/");
+    if (!c.shard.sharded()) names.push_back("sequence.glb");
+  } else {
+    names.push_back("frames/");
+  }
+  if (c.output.per_triangle_csv) names.push_back("distortion/");
+  const json& extras = result.extra_outputs;
+  if (extras.contains("colored")) names.push_back("colored/ (PLY)");
+  if (extras.contains("checker")) names.push_back("checker/ (OBJ, MTL, PNG)");
+  names.push_back("records/");
+  if (extras.contains("iterations")) names.push_back(extras["iterations"].get<std::string>());
+  names.push_back(summary_file_name(c.shard));
+  names.push_back(report_file_name(c.shard));
+  return names;
 }
 
 json make_report(const SequencePlan& plan, const SequenceResult& result) {

@@ -63,6 +63,20 @@ nlohmann::json make_report(const ReportHeader& header, const std::vector<FrameSu
                            const std::vector<std::string>& warnings, bool interrupted,
                            const nlohmann::json& run);
 
+/// The mean over `frames` of each frame's mean shear, before and after (report.json's
+/// totals.shear_before.mean_of_means and shear_after.mean_of_means).
+struct ShearMeans {
+  double before = 0.0;
+  double after = 0.0;
+};
+ShearMeans mean_shear(const std::vector<FrameSummary>& frames);
+
+/// What a run wrote, relative to output.dir, for the command line's results line: frames/ (or
+/// positions/ and sequence.glb; a shard's GLB is assembled by merge), distortion/, colored/ (PLY),
+/// checker/ (OBJ, MTL, PNG), records/, iterations.csv, summary.csv and report.json (the last
+/// three shard-named for a shard).
+std::vector<std::string> run_output_names(const SequencePlan& plan, const SequenceResult& result);
+
 /// The report of a run: make_report of the plan's header and the result's frames, with the run's
 /// times (config.output.timings), and for a shard its "shard" section (index, count, its frames,
 /// whether it is complete, the plan's warnings), from which `seqmassage merge` works.

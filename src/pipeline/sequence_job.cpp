@@ -6,7 +6,6 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
-#include <chrono>
 #include <exception>
 #include <mutex>
 #include <set>
@@ -20,6 +19,7 @@
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
+#include "mesh/timing.hpp"
 #include "pipeline/fold_check.hpp"
 #include "pipeline/frame_extras.hpp"
 #include "pipeline/frame_record.hpp"
@@ -30,12 +30,6 @@ namespace sm {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::string frame_label(const SequencePlan& plan, int index) {
   return plan.source->label(index);

@@ -12,72 +12,25 @@
 #include <thread>
 
 #include "io/atomic_file.hpp"
-#include "io/test_gltf_models.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/cli_process.hpp"
+#include "support/gltf_models.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
+#include "support/text_files.hpp"
 
 using namespace sm;
+using test::read_csv;
+using test::write_text;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
-  int code = -1;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-// Runs seqmassage with `args` (already quoted where needed) from the folder `cwd`.
-Run seqmassage(const fs::path& cwd, const std::string& args) {
-  const fs::path out = cwd / "stdout.txt", err = cwd / "stderr.txt";
-  const std::string command = "cd " + quote(cwd.string()) + " && " + quote(SEQMASSAGE_BIN) + " " +
-                              args + " >" + quote(out.string()) + " 2>" + quote(err.string());
-  const int status = std::system(command.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
-SyntheticConfig tube(int frames = 5, int segments = 12) {
-  SyntheticConfig c;
-  c.frames = frames;
-  c.segments = segments;
-  c.rings = 10;
-  return c;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
-
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(read_file(path));
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::istringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 // A folder with frames in `in/` (5 frames of a 12×10 tube) and a config job.json reading them.
 struct Fixture {
-  test::TempFolder dir;
+  test::TempDir dir;
   explicit Fixture(const std::string& name, const std::string& extra = "") : dir(name) {
-    write_synthetic_sequence(make_synthetic_sequence(tube()), dir / "in", dir / "gt");
+    write_synthetic_sequence(make_synthetic_sequence(test::small_tube(5)), dir / "in", dir / "gt");
     config("job.json", "out", extra);
   }
   void config(const std::string& file, const std::string& out, const std::string& extra = "") {
@@ -92,8 +45,8 @@ struct Fixture {
 }  // namespace
 
 TEST_CASE("--help documents the options and exit codes, --version the version") {
-  test::TempFolder dir("cli_help");
-  const Run help = seqmassage(dir.path(), "--help");
+  test::TempDir dir("cli_help");
+  const test::CliRun help = test::run_cli(dir.path(), "--help");
   CHECK(help.code == 0);
   for (const char* text :
        {"Usage: seqmassage [options] CONFIG.json", "--threads N", "--frames A:B[:STEP]",
@@ -101,14 +54,45 @@ TEST_CASE("--help documents the options and exit codes, --version the version") 
         "  2    usage or config error", "  3    input error", "  4    I/O error",
         "  5    processing error", "  130  interrupted"})
     CHECK_THAT(help.out, Catch::Contains(text));
-  const Run version = seqmassage(dir.path(), "--version");
+  const test::CliRun version = test::run_cli(dir.path(), "--version");
   CHECK(version.code == 0);
   CHECK_THAT(version.out, Catch::StartsWith("seqmassage 0."));
 }
 
+TEST_CASE("--help names every command, option and output") {
+  test::TempDir dir("cli_help_all");
+  const std::string help = test::run_cli(dir.path(), "--help").out;
+  for (const char* text :
+       {// commands and their own help
+        "seqmassage measure [options] MESH REFERENCE", "seqmassage measure --help",
+        "seqmassage merge [options] OUTPUT_DIR", "seqmassage merge --help",
+        // options
+        "-h, --help", "--version", "--threads N", "\"threads\"", "\"frames_in_flight\"",
+        "--frames A:B[:STEP]", "--dry-run", "--resume", "--shard I/N", "-q, --quiet",
+        // jobs
+        "sequence", "remesh", "crossparam", "smooth",
+        // outputs of a sequence, of a shard and of the other jobs
+        "frames/", "positions/", "sequence.glb", "distortion/", "colored/", ".ply", "checker/",
+        "checker.mtl", "checker.png", "iterations.csv", "records/", "summary.csv", "report.json",
+        "summary.shard-I-of-N.csv", "report.shard-I-of-N.json", "iterations.shard-I-of-N.csv",
+        "measures.csv", "triangles.csv", "\"per_triangle_csv\"", "\"on_failure\"",
+        // exit codes
+        "  1    internal error", "  143  terminated"})
+    CHECK_THAT(help, Catch::Contains(text));
+  const test::CliRun measure = test::run_cli(dir.path(), "measure --help");
+  CHECK(measure.code == 0);
+  for (const char* text : {"--template T", "--spacing X", "--feature-angle D", "--csv FILE",
+                           "--json FILE", "--threads N", "-h, --help"})
+    CHECK_THAT(measure.out, Catch::Contains(text));
+  const test::CliRun merge = test::run_cli(dir.path(), "merge --help");
+  CHECK(merge.code == 0);
+  for (const char* text : {"-q, --quiet", "-h, --help", "sequence.glb", "Exit status"})
+    CHECK_THAT(merge.out, Catch::Contains(text));
+}
+
 TEST_CASE("a run writes the documented outputs, and corrects the frames") {
   Fixture f("cli_run");
-  const Run r = seqmassage(f.dir.path(), "job.json");
+  const test::CliRun r = test::run_cli(f.dir.path(), "job.json");
   REQUIRE(r.code == 0);
   CHECK_THAT(r.out, Catch::Contains("results: "));
   CHECK_THAT(r.err, Catch::Contains("frame 5/5 frame_0004.obj: optimized"));  // not a terminal
@@ -158,8 +142,8 @@ TEST_CASE("a run writes the documented outputs, and corrects the frames") {
 TEST_CASE("one and two threads write the same bytes") {
   Fixture f("cli_threads");
   f.config("job2.json", "out2");
-  REQUIRE(seqmassage(f.dir.path(), "--threads 1 -q job.json").code == 0);
-  REQUIRE(seqmassage(f.dir.path(), "--threads=2 -q job2.json").code == 0);
+  REQUIRE(test::run_cli(f.dir.path(), "--threads 1 -q job.json").code == 0);
+  REQUIRE(test::run_cli(f.dir.path(), "--threads=2 -q job2.json").code == 0);
   int compared = 0;
   for (const auto& entry : fs::recursive_directory_iterator(f.dir / "out")) {
     const fs::path rel = fs::relative(entry.path(), f.dir / "out");
@@ -196,14 +180,14 @@ TEST_CASE("bad configs exit with code 2, name the key and write nothing") {
         R"({"job": "sequence", "input": {"frames": "in"}, "output": {"dir": "out"})" + c.extra +
         "}";
     write_text(f.dir / "job.json", text);
-    const Run r = seqmassage(f.dir.path(), "job.json");
+    const test::CliRun r = test::run_cli(f.dir.path(), "job.json");
     INFO(text);
     CHECK(r.code == 2);
     CHECK(r.err == "seqmassage: " + c.message + "\n");
     CHECK_FALSE(fs::exists(f.dir / "out"));
   }
   write_text(f.dir / "job.json", "{\"job\": \"sequence\", // a comment\n}");
-  Run r = seqmassage(f.dir.path(), "job.json");
+  test::CliRun r = test::run_cli(f.dir.path(), "job.json");
   CHECK(r.code == 2);
   CHECK(r.err == "seqmassage: job.json: line 1, column 21: comments are not allowed in JSON\n");
   CHECK_FALSE(fs::exists(f.dir / "out"));
@@ -211,19 +195,19 @@ TEST_CASE("bad configs exit with code 2, name the key and write nothing") {
 
 TEST_CASE("usage errors exit with code 2") {
   Fixture f("cli_usage");
-  Run r = seqmassage(f.dir.path(), "");
+  test::CliRun r = test::run_cli(f.dir.path(), "");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: missing the config file"));
-  r = seqmassage(f.dir.path(), "--bogus job.json");
+  r = test::run_cli(f.dir.path(), "--bogus job.json");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: unknown option '--bogus'"));
-  r = seqmassage(f.dir.path(), "--threads many job.json");
+  r = test::run_cli(f.dir.path(), "--threads many job.json");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: --threads: expected an integer in [0, 4096]"));
-  r = seqmassage(f.dir.path(), "--frames 4:2 job.json");
+  r = test::run_cli(f.dir.path(), "--frames 4:2 job.json");
   CHECK(r.code == 2);
   CHECK(r.err == "seqmassage: --frames: B must be >= A, got \"4:2\"\n");
-  r = seqmassage(f.dir.path(), "nowhere.json");
+  r = test::run_cli(f.dir.path(), "nowhere.json");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: config file 'nowhere.json' does not exist"));
   CHECK_FALSE(fs::exists(f.dir / "out"));
@@ -231,10 +215,10 @@ TEST_CASE("usage errors exit with code 2") {
 
 TEST_CASE("mismatched frames exit with code 3 and write nothing") {
   Fixture f("cli_mismatch");
-  const SyntheticSequence other = make_synthetic_sequence(tube(5, 10));
+  const SyntheticSequence other = make_synthetic_sequence(test::small_tube(5, 10));
   write_file_atomic(f.dir / "in/frame_0003.obj",
                     format_synthetic_obj(other, synthetic_frame(other, 3).drifted, "other"));
-  const Run r = seqmassage(f.dir.path(), "job.json");
+  const test::CliRun r = test::run_cli(f.dir.path(), "job.json");
   CHECK(r.code == 3);
   CHECK(r.err ==
         "seqmassage: input error: frame 3 (frame_0003.obj): 110 vertices, but the template, "
@@ -245,13 +229,13 @@ TEST_CASE("mismatched frames exit with code 3 and write nothing") {
 TEST_CASE("a missing frame folder exits with code 4, an overwriting output with 2") {
   Fixture f("cli_io");
   fs::rename(f.dir / "in", f.dir / "frames");
-  Run r = seqmassage(f.dir.path(), "job.json");
+  test::CliRun r = test::run_cli(f.dir.path(), "job.json");
   CHECK(r.code == 4);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: I/O error: "));
   CHECK_THAT(r.err, Catch::Contains("in"));
   write_text(f.dir / "over.json",
              R"({"job": "sequence", "input": {"frames": "frames"}, "output": {"dir": "."}})");
-  r = seqmassage(f.dir.path(), "over.json");
+  r = test::run_cli(f.dir.path(), "over.json");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: over.json: output.dir: writing "));
   CHECK_THAT(r.err, Catch::Contains("would overwrite an input file"));
@@ -260,14 +244,14 @@ TEST_CASE("a missing frame folder exits with code 4, an overwriting output with 
 
 TEST_CASE("--dry-run checks and describes, --frames selects, --quiet is quiet") {
   Fixture f("cli_options");
-  Run r = seqmassage(f.dir.path(), "--dry-run job.json");
+  test::CliRun r = test::run_cli(f.dir.path(), "--dry-run job.json");
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Catch::Contains("input: 5 OBJ frames in "));
   CHECK_THAT(r.out, Catch::Contains("template: frame 0 (frame_0000.obj), 132 vertices"));
   CHECK_THAT(r.out, Catch::Contains("dry run: nothing written"));
   CHECK_FALSE(fs::exists(f.dir / "out"));
 
-  r = seqmassage(f.dir.path(), "--quiet --frames 1:4:2 job.json");
+  r = test::run_cli(f.dir.path(), "--quiet --frames 1:4:2 job.json");
   CHECK(r.code == 0);
   CHECK(r.out.empty());
   CHECK(r.err.empty());
@@ -279,36 +263,36 @@ TEST_CASE("--dry-run checks and describes, --frames selects, --quiet is quiet") 
 }
 
 TEST_CASE("a synthetic input runs without outside data and keeps the ground truth") {
-  test::TempFolder dir("cli_synthetic");
+  test::TempDir dir("cli_synthetic");
   write_text(dir / "demo.json", R"({"job": "sequence",
     "input": {"synthetic": {"frames": 4, "segments": 12, "rings": 10}},
     "output": {"dir": "demo"}, "massage": {"iterations": 8}})");
-  const Run r = seqmassage(dir.path(), "demo.json");
+  const test::CliRun r = test::run_cli(dir.path(), "demo.json");
   REQUIRE(r.code == 0);
-  CHECK(r.out == "results: demo/ (frames/, summary.csv, report.json)\n");
+  CHECK(r.out == "results: demo/ (frames/, records/, summary.csv, report.json)\n");
   CHECK(fs::exists(dir / "demo/input/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/ground_truth/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/frames/frame_0003.obj"));
 }
 
 TEST_CASE("a glTF animation runs from the command line to sequence.glb") {
-  test::TempFolder dir("cli_gltf");
+  test::TempDir dir("cli_gltf");
   fs::create_directories(dir / "takes");
   test::skinned_strip().save(dir / "takes/strip.glb", true);
   write_text(dir / "job.json", R"({"job": "sequence",
     "input": {"gltf": "takes/strip.glb", "mesh": "strip", "animation": 0, "fps": 10},
     "output": {"dir": "out", "format": "gltf", "timings": false}, "massage": {"iterations": 5},
     "checks": {"max_folded_fraction": null}})");
-  Run r = seqmassage(dir.path(), "--dry-run job.json");
+  test::CliRun r = test::run_cli(dir.path(), "--dry-run job.json");
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Catch::Contains("12 glTF vertices welded to 10 (2 split copies merged)"));
   CHECK_THAT(r.out,
              Catch::Contains("  sequence.glb (11 frames, one morph target each, over 1 mesh"));
   CHECK_FALSE(fs::exists(dir / "out"));
 
-  r = seqmassage(dir.path(), "job.json");
+  r = test::run_cli(dir.path(), "job.json");
   REQUIRE(r.code == 0);
-  CHECK(r.out == "results: out/ (sequence.glb, summary.csv, report.json)\n");
+  CHECK(r.out == "results: out/ (positions/, sequence.glb, records/, summary.csv, report.json)\n");
   CHECK_THAT(r.err, Catch::Contains("frame 11/11 frame_0010.obj: optimized"));
   test::require_valid_gltf(dir / "out/sequence.glb");
   const auto summary = read_csv(dir / "out/summary.csv");
@@ -323,7 +307,7 @@ TEST_CASE("a glTF animation runs from the command line to sequence.glb") {
   fs::remove_all(dir / "out");
   const std::string bytes = read_file(dir / "takes/strip.glb");
   write_file_atomic(dir / "takes/strip.glb", bytes.substr(0, 40));
-  r = seqmassage(dir.path(), "job.json");
+  r = test::run_cli(dir.path(), "job.json");
   CHECK(r.code == 3);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: input error: '") &&
                         Catch::Contains("strip.glb") && Catch::Contains("GLB"));
@@ -332,14 +316,14 @@ TEST_CASE("a glTF animation runs from the command line to sequence.glb") {
   // A GLB output needs a glTF input.
   write_text(dir / "obj.json", R"({"job": "sequence", "input": {"frames": "takes"},
     "output": {"dir": "out", "format": "gltf"}})");
-  r = seqmassage(dir.path(), "obj.json");
+  r = test::run_cli(dir.path(), "obj.json");
   CHECK(r.code == 2);
   CHECK_THAT(r.err,
              Catch::StartsWith("seqmassage: obj.json: output.format: \"gltf\" needs a glTF input"));
 }
 
 TEST_CASE("Ctrl-C stops the run with code 130, the frames done are recorded") {
-  test::TempFolder dir("cli_interrupt");
+  test::TempDir dir("cli_interrupt");
   write_text(dir / "long.json", R"({"job": "sequence",
     "input": {"synthetic": {"frames": 400, "segments": 24, "rings": 40}},
     "output": {"dir": "out"}, "threads": 1})");

@@ -15,56 +15,16 @@
 
 #include "io/atomic_file.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/cli_process.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
+#include "support/text_files.hpp"
 
 using namespace sm;
+using test::write_text;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-// Runs `seqmassage args...` in `cwd`; with `file_size_limit`, under RLIMIT_FSIZE of that many
-// bytes (writes beyond it fail with EFBIG, as a full disk fails with ENOSPC) and SIGXFSZ ignored.
-Result run_seqmassage(const fs::path& cwd, std::vector<std::string> args,
-                      std::optional<rlim_t> file_size_limit = std::nullopt) {
-  const fs::path out = cwd / ".stdout", err = cwd / ".stderr";
-  args.insert(args.begin(), SEQMASSAGE_BIN);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {  // only async-signal-safe calls until exec
-    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (o < 0 || e < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0 || ::chdir(cwd.c_str()) != 0)
-      ::_exit(97);
-    if (file_size_limit) {
-      ::signal(SIGXFSZ, SIG_IGN);
-      const struct rlimit limit = {*file_size_limit, *file_size_limit};
-      if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(96);
-    }
-    ::execv(argv[0], argv.data());
-    ::_exit(98);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
 
 // Every regular file under `dir` with its bytes.
 std::map<fs::path, std::string> snapshot(const fs::path& dir) {
@@ -83,14 +43,10 @@ int temporaries_in(const fs::path& dir) {
 
 // Five frames of a 12×10 tube in `in/`, and job.json reading them into `out/`.
 struct Job {
-  test::TempFolder dir;
+  test::TempDir dir;
   SyntheticSequence sequence;
   explicit Job(const std::string& name, const std::string& out = "out") : dir(name) {
-    SyntheticConfig c;
-    c.frames = 5;
-    c.segments = 12;
-    c.rings = 10;
-    sequence = make_synthetic_sequence(c);
+    sequence = make_synthetic_sequence(test::small_tube(5));
     write_synthetic_sequence(sequence, dir / "in", dir / "gt");
     write_text(dir / "job.json", R"({"job": "sequence", "input": {"frames": "in"},
       "output": {"dir": ")" + out + R"(", "per_triangle_csv": true, "timings": false},
@@ -154,7 +110,7 @@ TEST_CASE("a NaN, a bad index or a truncated frame: exit 3 naming the file and l
     INFO(c.message);
     job.set_frame(2, c.text);
     const auto before = snapshot(job.path("in"));
-    const Result r = run_seqmassage(job.dir.path(), {"job.json"});
+    const test::CliRun r = test::run_cli_args(job.dir.path(), {"job.json"});
     CHECK(r.code == 3);
     CHECK(r.err == "seqmassage: input error: " + frame2 + c.message + "\n");
     CHECK_FALSE(fs::exists(job.path("out")));
@@ -168,7 +124,7 @@ TEST_CASE("frames whose triangles differ from the template's: exit 3, nothing wr
   // One triangle fewer, same vertices.
   const std::string f = job.frame(3);
   job.set_frame(3, replace_line(f, line_of(f, "f "), "# a face removed"));
-  Result r = run_seqmassage(job.dir.path(), {"job.json"});
+  test::CliRun r = test::run_cli_args(job.dir.path(), {"job.json"});
   CHECK(r.code == 3);
   CHECK(r.err ==
         "seqmassage: input error: frame 3 (frame_0003.obj): 239 triangles, but the template, "
@@ -181,7 +137,7 @@ TEST_CASE("an empty frame folder: exit 3 naming the folder", "[cli][errors]") {
   fs::remove_all(job.path("in"));
   fs::create_directories(job.path("in"));
   write_text(job.path("in/readme.txt"), "no frames here\n");
-  const Result r = run_seqmassage(job.dir.path(), {"job.json"});
+  const test::CliRun r = test::run_cli_args(job.dir.path(), {"job.json"});
   CHECK(r.code == 3);
   CHECK(r.err == "seqmassage: input error: frame folder '" + job.path("in").string() +
                      "' has no .obj files\n");
@@ -193,7 +149,7 @@ TEST_CASE("an output folder that cannot be created: exit 4 naming it, nothing wr
   // A regular file where the output folder should go (read-only folders do not stop root).
   Job job("cli_unwritable", "blocker/out");
   write_text(job.path("blocker"), "a file, not a folder\n");
-  const Result r = run_seqmassage(job.dir.path(), {"job.json"});
+  const test::CliRun r = test::run_cli_args(job.dir.path(), {"job.json"});
   CHECK(r.code == 4);
   CHECK_THAT(r.err, Catch::Contains("seqmassage: I/O error: cannot create folder '" +
                                     job.path("blocker/out").string()));
@@ -207,7 +163,8 @@ TEST_CASE("a full disk: exit 4 naming the file, no partial or temporary file is 
   const auto inputs = snapshot(job.path("in"));
   // Below the size of a frame: the first output file fails.
   const size_t frame_size = job.frame(0).size();
-  const Result r = run_seqmassage(job.dir.path(), {"--threads", "2", "job.json"}, frame_size / 2);
+  const test::CliRun r =
+      test::run_cli_args(job.dir.path(), {"--threads", "2", "job.json"}, frame_size / 2);
   CHECK(r.code == 4);
   CHECK_THAT(r.err, Catch::Contains("seqmassage: I/O error: cannot write '" +
                                     job.path("out/frames/frame_0000.obj").string() +
@@ -218,13 +175,14 @@ TEST_CASE("a full disk: exit 4 naming the file, no partial or temporary file is 
 
   // A limit that lets the template frame (written unchanged, the smallest frame) through but not
   // the optimized frames: what was written is complete (equal to the file of an unlimited run).
-  const Result full = run_seqmassage(job.dir.path(), {"--threads", "2", "job.json"});
+  const test::CliRun full = test::run_cli_args(job.dir.path(), {"--threads", "2", "job.json"});
   REQUIRE(full.code == 0);
   const auto complete = snapshot(job.path("out"));
   fs::remove_all(job.path("out"));
   const size_t limit = complete.at("frames/frame_0000.obj").size();
   REQUIRE(complete.at("frames/frame_0001.obj").size() > limit);
-  const Result partial = run_seqmassage(job.dir.path(), {"--threads", "2", "job.json"}, limit);
+  const test::CliRun partial =
+      test::run_cli_args(job.dir.path(), {"--threads", "2", "job.json"}, limit);
   CHECK(partial.code == 4);
   CHECK_THAT(partial.err,
              Catch::Contains("cannot write '" + job.path("out/frames/frame_0001.obj").string() +
@@ -244,19 +202,19 @@ TEST_CASE("the output folder may be the input folder: inputs untouched, outputs 
           "[cli][errors]") {
   Job job("cli_out_is_in", "in");
   const auto inputs = snapshot(job.path("in"));
-  Result r = run_seqmassage(job.dir.path(), {"-q", "job.json"});
+  test::CliRun r = test::run_cli_args(job.dir.path(), {"-q", "job.json"});
   CHECK(r.code == 0);
   for (const auto& [name, bytes] : inputs) CHECK(read_file(job.path("in") / name) == bytes);
   CHECK(fs::exists(job.path("in/frames/frame_0004.obj")));
   CHECK(fs::exists(job.path("in/summary.csv")));
   // A second run sees the same five frames (outputs are not .obj files of the folder itself).
-  r = run_seqmassage(job.dir.path(), {"--dry-run", "job.json"});
+  r = test::run_cli_args(job.dir.path(), {"--dry-run", "job.json"});
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Catch::Contains("input: 5 OBJ frames in "));
   // Reading the outputs of a run as input with the same output folder would overwrite them.
   write_text(job.path("again.json"), R"({"job": "sequence", "input": {"frames": "in/frames"},
     "output": {"dir": "in"}})");
-  r = run_seqmassage(job.dir.path(), {"again.json"});
+  r = test::run_cli_args(job.dir.path(), {"again.json"});
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::Contains("would overwrite an input file"));
 }
@@ -268,7 +226,7 @@ TEST_CASE("a template with degenerate triangles runs with a warning", "[cli][err
   const int v = line_of(f, "v ");
   const size_t first = f.find("\nv ") + 1;
   job.set_frame(0, replace_line(f, v + 1, f.substr(first, f.find('\n', first) - first)));
-  const Result r = run_seqmassage(job.dir.path(), {"job.json"});
+  const test::CliRun r = test::run_cli_args(job.dir.path(), {"job.json"});
   CHECK(r.code == 0);
   CHECK_THAT(r.err, Catch::Contains("seqmassage: warning: template (frame 0 (frame_0000.obj)): "));
   CHECK_THAT(r.err, Catch::Contains("degenerate triangles"));

@@ -7,17 +7,17 @@
 #include <filesystem>
 #include <string>
 
-#include "cli/cli_process.hpp"
+#include "support/cli_process.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 
 TEST_CASE("every config in configs/ passes seqmassage --dry-run and writes nothing") {
   const fs::path configs = fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "configs";
   const bool shared_data = fs::is_directory(SEQMASSAGE_SHARED_DATA_DIR);
-  const sm::test::TempFolder cwd("configs_dry_run");  // stdout and stderr go here, not configs/
+  const sm::test::TempDir cwd("configs_dry_run");  // stdout and stderr go here, not configs/
   int checked = 0, skipped = 0;
   for (const auto& entry : fs::directory_iterator(configs)) {
     if (entry.path().extension() != ".json") continue;

@@ -10,8 +10,9 @@
 #include "io/atomic_file.hpp"
 #include "io/mesh_file.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/job_meshes.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/cli_process.hpp"
+#include "support/job_meshes.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
@@ -19,35 +20,9 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-struct Run {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-Run seqmassage(const fs::path& cwd, const std::string& args) {
-  const fs::path out = cwd / "stdout.txt", err = cwd / "stderr.txt";
-  const std::string command = "cd " + quote(cwd.string()) + " && " + quote(SEQMASSAGE_BIN) + " " +
-                              args + " >" + quote(out.string()) + " 2>" + quote(err.string());
-  const int status = std::system(command.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(out);
-  r.err = read_file(err);
-  fs::remove(out);
-  fs::remove(err);
-  return r;
-}
-
 // A folder with a remesh pair (sphere), a box to smooth and a config per job.
 struct Fixture {
-  test::TempFolder dir;
+  test::TempDir dir;
   explicit Fixture(const std::string& name) : dir(name) {
     const test::RemeshPair pair = test::sphere_remesh_pair();
     write_mesh(dir / "remesh.off", pair.remesh);
@@ -65,7 +40,7 @@ struct Fixture {
 
 TEST_CASE("seqmassage runs a remesh config: outputs, the printed report, exit 0") {
   Fixture f("cli_remesh");
-  const Run r = seqmassage(f.dir.path(), "remesh.json");
+  const test::CliRun r = test::run_cli(f.dir.path(), "remesh.json");
   INFO(r.err);
   REQUIRE(r.code == 0);
   for (const char* text :
@@ -79,12 +54,12 @@ TEST_CASE("seqmassage runs a remesh config: outputs, the printed report, exit 0"
   CHECK(fs::exists(f.dir / "out_remesh/report.json"));
 
   // -q prints nothing on success; --dry-run writes nothing.
-  const Run quiet = seqmassage(f.dir.path(), "-q remesh.json");
+  const test::CliRun quiet = test::run_cli(f.dir.path(), "-q remesh.json");
   CHECK(quiet.code == 0);
   CHECK(quiet.out.empty());
   CHECK(quiet.err.empty());
   fs::remove_all(f.dir / "out_remesh");
-  const Run dry = seqmassage(f.dir.path(), "--dry-run remesh.json");
+  const test::CliRun dry = test::run_cli(f.dir.path(), "--dry-run remesh.json");
   CHECK(dry.code == 0);
   CHECK_THAT(dry.out, Contains("job: remesh\nmesh (M): "));
   CHECK_THAT(dry.out, Contains("dry run: nothing written"));
@@ -93,7 +68,7 @@ TEST_CASE("seqmassage runs a remesh config: outputs, the printed report, exit 0"
 
 TEST_CASE("seqmassage runs a smooth config with another output format") {
   Fixture f("cli_smooth");
-  const Run r = seqmassage(f.dir.path(), "--threads 1 smooth.json");
+  const test::CliRun r = test::run_cli(f.dir.path(), "--threads 1 smooth.json");
   INFO(r.err);
   REQUIRE(r.code == 0);
   CHECK(fs::exists(f.dir / "out_smooth/box.ply"));
@@ -107,9 +82,10 @@ TEST_CASE("bad single-mesh configs and options name the key, exit 2, write nothi
   Fixture f("cli_mesh_errors");
   auto config = [&](const std::string& text) {
     write_file_atomic(f.dir / "bad.json", text);
-    return seqmassage(f.dir.path(), "bad.json");
+    return test::run_cli(f.dir.path(), "bad.json");
   };
-  Run r = config(R"({"job": "remesh", "input": {"mesh": "remesh.off", "refrence": "source.off"},
+  test::CliRun r =
+      config(R"({"job": "remesh", "input": {"mesh": "remesh.off", "refrence": "source.off"},
                      "output": {"dir": "o"}})");
   CHECK(r.code == 2);
   CHECK(r.err ==
@@ -123,7 +99,7 @@ TEST_CASE("bad single-mesh configs and options name the key, exit 2, write nothi
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Contains("output.dir: writing"));
   CHECK_THAT(r.err, Contains("would overwrite an input file"));
-  r = seqmassage(f.dir.path(), "--frames 0:2 smooth.json");
+  r = test::run_cli(f.dir.path(), "--frames 0:2 smooth.json");
   CHECK(r.code == 2);
   CHECK(r.err == "seqmassage: --frames: only for \"job\": \"sequence\" (this is a smooth job)\n");
   r = config(R"({"job": "smooth", "input": {"mesh": "missing.obj"}, "output": {"dir": "o"}})");
@@ -138,7 +114,8 @@ TEST_CASE("bad single-mesh configs and options name the key, exit 2, write nothi
 
 TEST_CASE("seqmassage measure A B prints the report; --csv and --json write it") {
   Fixture f("cli_measure");
-  const Run r = seqmassage(f.dir.path(), "measure remesh.off source.off --csv m.csv --json m.json");
+  const test::CliRun r =
+      test::run_cli(f.dir.path(), "measure remesh.off source.off --csv m.csv --json m.json");
   INFO(r.err);
   REQUIRE(r.code == 0);
   for (const char* text :
@@ -156,35 +133,39 @@ TEST_CASE("seqmassage measure A B prints the report; --csv and --json write it")
   CHECK(j["template"].is_null());
 
   // Same connectivity: shear against the reference, dihedral changes.
-  const Run same = seqmassage(f.dir.path(), "measure box.obj box.obj --feature-angle 45");
+  const test::CliRun same =
+      test::run_cli(f.dir.path(), "measure box.obj box.obj --feature-angle 45");
   REQUIRE(same.code == 0);
   CHECK_THAT(same.out, Contains("T = N (it has M's connectivity)"));
   CHECK_THAT(same.out, Contains("shear against T (eq. 8)"));
   CHECK_THAT(same.out, Contains("dihedral change (degrees)"));
   CHECK_THAT(same.out, Contains("(dihedral angle above 45 degrees): 72"));
-  const Run templ = seqmassage(f.dir.path(), "measure remesh.off source.off --template box.obj");
+  const test::CliRun templ =
+      test::run_cli(f.dir.path(), "measure remesh.off source.off --template box.obj");
   CHECK(templ.code == 3);
   CHECK_THAT(templ.err, Contains("--template needs the connectivity of remesh.off"));
 
-  const Run help = seqmassage(f.dir.path(), "measure --help");
+  const test::CliRun help = test::run_cli(f.dir.path(), "measure --help");
   CHECK(help.code == 0);
   CHECK_THAT(help.out, Contains("Usage: seqmassage measure [options] MESH REFERENCE"));
-  CHECK(seqmassage(f.dir.path(), "measure remesh.off").code == 2);
-  CHECK(seqmassage(f.dir.path(), "measure a b c").code == 2);
-  const Run bad_option = seqmassage(f.dir.path(), "measure --spacing 0 remesh.off source.off");
+  CHECK(test::run_cli(f.dir.path(), "measure remesh.off").code == 2);
+  CHECK(test::run_cli(f.dir.path(), "measure a b c").code == 2);
+  const test::CliRun bad_option =
+      test::run_cli(f.dir.path(), "measure --spacing 0 remesh.off source.off");
   CHECK(bad_option.code == 2);
   CHECK_THAT(bad_option.err, Contains("--spacing: expected a number > 0, got \"0\""));
-  const Run missing = seqmassage(f.dir.path(), "measure remesh.off nothing.off");
+  const test::CliRun missing = test::run_cli(f.dir.path(), "measure remesh.off nothing.off");
   CHECK(missing.code == 4);
   CHECK_THAT(missing.err, Contains("nothing.off"));
-  const Run overwrite = seqmassage(f.dir.path(), "measure remesh.off source.off --csv source.off");
+  const test::CliRun overwrite =
+      test::run_cli(f.dir.path(), "measure remesh.off source.off --csv source.off");
   CHECK(overwrite.code == 2);
   CHECK_THAT(overwrite.err, Contains("--csv: source.off is an input file"));
 }
 
 TEST_CASE("--help lists the jobs and the measure command") {
-  test::TempFolder dir("cli_mesh_help");
-  const Run help = seqmassage(dir.path(), "--help");
+  test::TempDir dir("cli_mesh_help");
+  const test::CliRun help = test::run_cli(dir.path(), "--help");
   CHECK(help.code == 0);
   for (const char* text : {"seqmassage measure [options] MESH REFERENCE", "remesh ", "crossparam ",
                            "smooth ", "measures.csv"})

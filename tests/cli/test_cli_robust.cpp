@@ -8,24 +8,22 @@
 #include <random>
 #include <thread>
 
-#include "cli/cli_process.hpp"
 #include "io/atomic_file.hpp"
 #include "io/obj.hpp"
 #include "pipeline/frame_record.hpp"
-#include "pipeline/sequence_fixture.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/cli_process.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
+#include "support/text_files.hpp"
 
 using namespace sm;
+using test::write_text;
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream(path) << text;
-}
 
 // A config reading the frames in `in`, writing to `out`: 8 iterations, per-triangle tables, no
 // timings (every output byte reproducible).
@@ -91,22 +89,10 @@ int require_complete_files(const fs::path& out, int vertices) {
   return temporaries;
 }
 
-std::map<std::string, std::string> compare_folders(const fs::path& a, const fs::path& b,
-                                                   const std::string& skip = "") {
-  const auto left = test::folder_bytes(a, skip), right = test::folder_bytes(b, skip);
-  CHECK(test::names_of(left) == test::names_of(right));
-  for (const auto& [name, bytes] : left) {
-    INFO(name);
-    REQUIRE(right.count(name));
-    CHECK(right.at(name) == bytes);
-  }
-  return left;
-}
-
 }  // namespace
 
 TEST_CASE("SIGKILL at random moments leaves complete files; --resume ends with the same bytes") {
-  test::TempFolder dir("cli_kill");
+  test::TempDir dir("cli_kill");
   SyntheticConfig tube = test::small_tube(30);
   tube.segments = 24;
   tube.rings = 24;
@@ -148,12 +134,12 @@ TEST_CASE("SIGKILL at random moments leaves complete files; --resume ends with t
   REQUIRE(last.code == 0);
   CHECK_THAT(last.err, Contains("seqmassage: resume: "));
   CHECK(require_complete_files(dir / "out", vertices) == 0);  // the killed writers' are gone
-  compare_folders(dir / "whole", dir / "out");
+  test::compare_folders(dir / "whole", dir / "out");
   WARN("killed " << kills << " of 6 runs, " << temporaries << " temporaries seen after kills");
 }
 
 TEST_CASE("SIGTERM stops after the frames in flight with exit 143, and --resume finishes") {
-  test::TempFolder dir("cli_term");
+  test::TempDir dir("cli_term");
   SyntheticConfig tube = test::small_tube(200);
   tube.segments = 24;
   tube.rings = 24;
@@ -176,7 +162,7 @@ TEST_CASE("SIGTERM stops after the frames in flight with exit 143, and --resume 
 }
 
 TEST_CASE("failed frames exit with code 5 and are reported; with \"skip\" they are not written") {
-  test::TempFolder dir("cli_failed");
+  test::TempDir dir("cli_failed");
   write_synthetic_sequence(make_synthetic_sequence(test::small_tube(4)), dir / "in", dir / "gt");
   // A tracking glitch: one vertex of frame 2 flung 5 units away folds the corrected frame.
   test::edit_obj_vertices(dir / "in/frame_0002.obj", [](int v, double& x, double&, double&) {
@@ -216,7 +202,7 @@ TEST_CASE("failed frames exit with code 5 and are reported; with \"skip\" they a
 }
 
 TEST_CASE("3 shards in parallel processes, merged, give the bytes of one run") {
-  test::TempFolder dir("cli_shards");
+  test::TempDir dir("cli_shards");
   write_synthetic_sequence(make_synthetic_sequence(test::small_tube(10)), dir / "in", dir / "gt");
   write_text(dir / "job.json", job());
   REQUIRE(test::run_cli(dir.path(), "-q job.json").code == 0);
@@ -233,7 +219,7 @@ TEST_CASE("3 shards in parallel processes, merged, give the bytes of one run") {
   REQUIRE(m.code == 0);
   CHECK(m.out == "results: out/ (summary.csv, report.json)\n");
   CHECK(m.err == "seqmassage: merged 3 shards, 10 frames (0 failed)\n");
-  compare_folders(dir / "single", dir / "out", ".shard-");
+  test::compare_folders(dir / "single", dir / "out", ".shard-");
   CHECK(require_complete_files(dir / "out", 132) == 0);
 
   // One shard's output removed: merge names the shard and its frames, and writes nothing.
@@ -258,11 +244,11 @@ TEST_CASE("3 shards in parallel processes, merged, give the bytes of one run") {
   // The shard, run again (resuming: nothing of it is left, so all of it), completes the merge.
   REQUIRE(test::run_cli(dir.path(), "-q --shard 1/3 --resume job.json").code == 0);
   REQUIRE(test::run_cli(dir.path(), "merge -q out").code == 0);
-  compare_folders(dir / "single", dir / "out", ".shard-");
+  test::compare_folders(dir / "single", dir / "out", ".shard-");
 }
 
 TEST_CASE("merge: usage, help, and a folder without shards") {
-  test::TempFolder dir("cli_merge_usage");
+  test::TempDir dir("cli_merge_usage");
   test::CliRun r = test::run_cli(dir.path(), "merge --help");
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Contains("Usage: seqmassage merge [options] OUTPUT_DIR"));

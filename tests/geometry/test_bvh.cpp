@@ -15,6 +15,7 @@
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "mesh/topology.hpp"
+#include "support/brute_force_closest.hpp"
 
 using namespace sm;
 
@@ -23,21 +24,6 @@ namespace {
 std::vector<TriMesh> test_meshes() {
   return {make_icosphere(3, 1.0), make_torus(40, 20, 2.0, 0.6), make_box(6, 1.0, 2.0, 0.5),
           make_cylinder(24, 8, 1.0, 2.0), make_grid(20, 20, 2.0, 1.0)};
-}
-
-SurfacePoint brute_force(const Positions& V, const Triangles& F, const Vec3& p) {
-  SurfacePoint best;
-  for (int t = 0; t < F.rows(); ++t) {
-    const TrianglePoint tp = closest_point_on_triangle(
-        p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(), V.row(F(t, 2)).transpose());
-    if (tp.dist2 < best.dist2) {
-      best.triangle = t;
-      best.dist2 = tp.dist2;
-      best.point = tp.point;
-      best.bary = tp.bary;
-    }
-  }
-  return best;
 }
 
 // Half of the queries lie near the surface (a random surface point moved by up to `near` along
@@ -71,7 +57,7 @@ void check_against_brute_force(const TriangleBvh& bvh, const Positions& V, const
   const double diag = bounding_box_diagonal(V);
   for (const Vec3& p : qs) {
     const SurfacePoint got = bvh.closest(p);
-    const SurfacePoint want = brute_force(V, F, p);
+    const SurfacePoint want = test::brute_force_closest(V, F, p);
     REQUIRE(got.triangle >= 0);
     CHECK(got.dist2 == Approx(want.dist2).margin(1e-14 * diag * diag));
     // The reported triangle holds the reported point, whichever of several tied triangles won.
@@ -100,7 +86,7 @@ TEST_CASE("BVH respects the distance bound", "[bvh]") {
   const TriMesh mesh = make_torus(30, 15, 2.0, 0.6);
   const TriangleBvh bvh(mesh);
   for (const Vec3& p : queries(mesh.V, mesh.F, 300, 9)) {
-    const SurfacePoint want = brute_force(mesh.V, mesh.F, p);
+    const SurfacePoint want = test::brute_force_closest(mesh.V, mesh.F, p);
     if (want.dist2 == 0.0) continue;
     CHECK(bvh.closest(p, 0.5 * want.dist2).triangle == -1);
     CHECK(bvh.closest(p, want.dist2).triangle == -1);  // strictly closer only

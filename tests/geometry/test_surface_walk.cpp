@@ -8,20 +8,12 @@
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "mesh/topology.hpp"
+#include "support/brute_force_closest.hpp"
 
 using namespace sm;
+using test::brute_force_dist2;
 
 namespace {
-
-double brute_force_dist2(const TriMesh& mesh, const Vec3& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int t = 0; t < mesh.num_triangles(); ++t)
-    best = std::min(
-        best, closest_point_on_triangle(p, mesh.vertex(mesh.F(t, 0)), mesh.vertex(mesh.F(t, 1)),
-                                        mesh.vertex(mesh.F(t, 2)))
-                  .dist2);
-  return best;
-}
 
 Vec3 random_surface_point(const TriMesh& mesh, int t, std::mt19937& rng) {
   std::uniform_real_distribution<double> u01(0.0, 1.0);

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
-#include "io/scratch_dir.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
@@ -27,7 +27,7 @@ void touch(const fs::path& file) {
 }  // namespace
 
 TEST_CASE("write_file_atomic leaves the file and no temporary") {
-  test::ScratchDir dir;
+  test::TempDir dir;
   write_file_atomic(dir / "sub/a.txt", "hello");
   CHECK(read_file(dir / "sub/a.txt") == "hello");
   CHECK(count_files(dir / "sub") == 1);
@@ -37,7 +37,7 @@ TEST_CASE("write_file_atomic leaves the file and no temporary") {
 }
 
 TEST_CASE("remove_stale_temporaries removes a dead writer's temporaries only") {
-  test::ScratchDir dir;
+  test::TempDir dir;
   // A process that has ended: its pid is not running any more (it was reaped).
   const pid_t child = ::fork();
   REQUIRE(child >= 0);

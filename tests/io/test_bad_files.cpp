@@ -17,11 +17,12 @@
 #include "io/obj.hpp"
 #include "io/off.hpp"
 #include "io/ply.hpp"
-#include "io/scratch_dir.hpp"
 #include "mesh/errors.hpp"
+#include "support/error_of.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
-using sm::test::message_of;
+using sm::test::error_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -29,7 +30,7 @@ namespace {
 const std::string kTri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
 std::string obj_error(const std::string& text) {
-  return message_of<InputError>([&] { parse_obj(text, "bad.obj"); });
+  return error_of<InputError>([&] { parse_obj(text, "bad.obj"); });
 }
 
 template <class T>
@@ -73,15 +74,15 @@ TEST_CASE("truncated mesh files name the line and what is missing", "[errors]") 
   // An OBJ cut before its faces.
   CHECK(obj_error(kTri) == "bad.obj: no faces (no 'f' statement)");
   // OFF and PLY cut in their data.
-  CHECK(message_of<InputError>([] { parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1", "cut.off"); }) ==
+  CHECK(error_of<InputError>([] { parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1", "cut.off"); }) ==
         "cut.off:5: vertex 2: coordinate z is missing");
   const std::string ply = binary_ply(0.f);
-  CHECK(message_of<InputError>([&] { parse_ply(ply.substr(0, ply.size() - 3), "cut.ply"); }) ==
+  CHECK(error_of<InputError>([&] { parse_ply(ply.substr(0, ply.size() - 3), "cut.ply"); }) ==
         "cut.ply: face 0: vertex_indices: the data ends early (binary, byte " +
             std::to_string(ply.size() - 4) + ")");
-  CHECK(message_of<InputError>([&] { parse_ply(ply.substr(0, 60), "cut.ply"); }) ==
+  CHECK(error_of<InputError>([&] { parse_ply(ply.substr(0, 60), "cut.ply"); }) ==
         "cut.ply:4: unknown header keyword 'propert'");
-  CHECK(message_of<InputError>([&] {
+  CHECK(error_of<InputError>([&] {
           parse_ply(ply.substr(0, ply.find("end_header")), "cut.ply");
         }) == "cut.ply: the PLY header has no end_header line");
 }
@@ -92,12 +93,12 @@ TEST_CASE("non-finite values are refused in every format and every field", "[err
   CHECK(obj_error("v 0 0 0 1 inf\n") ==
         "bad.obj:1: v: extra value 2 (w or colour) 'inf' is not finite");
   CHECK(obj_error("v 0 0 -1e400\n") == "bad.obj:1: v: coordinate z '-1e400' is not finite");
-  CHECK(message_of<InputError>([] {
+  CHECK(error_of<InputError>([] {
           parse_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 inf 0\n3 0 1 2\n", "bad.off");
         }) == "bad.off:5: vertex 2: coordinate y 'inf' is not finite");
-  CHECK(message_of<InputError>([] { parse_ply(binary_ply(std::nanf("")), "bad.ply"); }) ==
+  CHECK(error_of<InputError>([] { parse_ply(binary_ply(std::nanf("")), "bad.ply"); }) ==
         "bad.ply: vertex 1: y is not finite");
-  CHECK(message_of<InputError>([] { parse_ply(binary_ply(-HUGE_VALF), "bad.ply"); }) ==
+  CHECK(error_of<InputError>([] { parse_ply(binary_ply(-HUGE_VALF), "bad.ply"); }) ==
         "bad.ply: vertex 1: y is not finite");
 }
 
@@ -116,10 +117,10 @@ TEST_CASE("an OBJ face may not refer to a vt or vn that is missing", "[errors]")
 TEST_CASE("an output folder that cannot be created names the folder and nothing is written",
           "[errors]") {
   // A regular file where a folder is needed: refused even for root, unlike a read-only folder.
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   std::ofstream(dir / "file") << "x";
   const fs::path out = dir / "file" / "out" / "frame.obj";
-  const std::string message = message_of<IoError>([&] { write_file_atomic(out, "v 0 0 0\n"); });
+  const std::string message = error_of<IoError>([&] { write_file_atomic(out, "v 0 0 0\n"); });
   CHECK_THAT(message,
              Catch::StartsWith("cannot create folder '" + (dir / "file" / "out").string() + "': "));
   CHECK(temporaries_in(dir.path()) == 0);
@@ -129,7 +130,7 @@ TEST_CASE("a full disk fails the write with the file's name and leaves no partia
           "[errors]") {
   // RLIMIT_FSIZE makes write() fail with EFBIG beyond the limit, as a full disk fails with ENOSPC;
   // it is set in a child process (SIGXFSZ ignored), which reports the message through a pipe.
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   const fs::path target = dir / "frames" / "frame_0001.obj";
   write_file_atomic(target, "the previous complete version\n");
   const std::string big(1 << 20, 'v');
@@ -167,9 +168,9 @@ TEST_CASE("a full disk fails the write with the file's name and leaves no partia
 }
 
 TEST_CASE("an unknown mesh file extension is named", "[errors]") {
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   std::ofstream(dir / "mesh.stl") << "solid x\n";
-  const std::string message = message_of<InputError>([&] { read_mesh(dir / "mesh.stl"); });
+  const std::string message = error_of<InputError>([&] { read_mesh(dir / "mesh.stl"); });
   CHECK_THAT(message, Catch::Contains("mesh.stl"));
   CHECK_THAT(message, Catch::Contains(".stl"));
 }

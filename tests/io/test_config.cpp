@@ -5,6 +5,7 @@
 
 #include "io/config.hpp"
 #include "mesh/errors.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 using json = nlohmann::json;
@@ -297,8 +298,8 @@ TEST_CASE("strict JSON: comments, duplicate keys and syntax errors are refused")
 }
 
 TEST_CASE("load_config reads a file and resolves paths against its folder") {
-  const fs::path dir = fs::temp_directory_path() / "seqmassage_test_config";
-  fs::remove_all(dir);
+  const test::TempDir temp("config");
+  const fs::path& dir = temp.path();
   fs::create_directories(dir / "sub");
   std::ofstream(dir / "sub" / "job.json") << kMinimal;
   const JobConfig c = load_config(dir / "sub" / "job.json");
@@ -307,7 +308,6 @@ TEST_CASE("load_config reads a file and resolves paths against its folder") {
   CHECK_THROWS_AS(load_config(dir / "missing.json"), IoError);
   std::ofstream(dir / "bad.json") << "{\"job\": \"sequence\",, }";
   CHECK_THROWS_AS(load_config(dir / "bad.json"), ConfigError);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("frame ranges A:B[:STEP]") {

@@ -7,22 +7,15 @@
 
 #include "io/config.hpp"
 #include "mesh/errors.hpp"
+#include "support/error_of.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
+using test::error_of;
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
-
-template <class E, class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  return "";
-}
 
 std::string json_error(const std::string& text) {
   return error_of<ConfigError>([&] { parse_json_strict(text); });
@@ -83,8 +76,8 @@ TEST_CASE("valid JSON that is not a config names the JSON path", "[config][error
 }
 
 TEST_CASE("a config file that cannot be read is an I/O error naming it", "[config][errors]") {
-  const fs::path dir = fs::temp_directory_path() / "seqmassage_test_config_bad";
-  fs::remove_all(dir);
+  const test::TempDir temp("config_bad");
+  const fs::path& dir = temp.path();
   fs::create_directories(dir / "folder.json");
   const std::string missing = error_of<IoError>([&] { load_config(dir / "missing.json"); });
   CHECK(missing ==
@@ -95,5 +88,4 @@ TEST_CASE("a config file that cannot be read is an I/O error naming it", "[confi
   CHECK(error_of<ConfigError>([&] {
           load_config(dir / "empty.json");
         }).rfind("line 1, column 1: syntax error", 0) == 0);
-  fs::remove_all(dir);
 }

@@ -7,15 +7,16 @@
 
 #include "io/atomic_file.hpp"
 #include "io/gltf_load.hpp"
-#include "io/test_gltf_models.hpp"
 #include "mesh/errors.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 namespace sm {
 namespace {
 
 using Catch::Contains;
 using test::ModelBuilder;
-using test::ScratchDir;
+using test::TempDir;
 
 GltfSequence load(const std::filesystem::path& file) {
   return load_gltf_sequence({file, "", "", std::nullopt});
@@ -40,8 +41,8 @@ const float kInf = std::numeric_limits<float>::infinity();
 
 TEST_CASE("glTF: NaN and infinite accessor values name the accessor and the element",
           "[gltf][errors]") {
-  ScratchDir dir("gltf-nan");
-  const auto path = dir.path / "bad.glb";
+  TempDir dir("gltf-nan");
+  const auto path = dir / "bad.glb";
   {  // a rest position
     ModelBuilder b = test::morph_quad();
     const int position = b.m.meshes[0].primitives[0].attributes["POSITION"];
@@ -78,22 +79,22 @@ TEST_CASE("glTF: NaN and infinite accessor values name the accessor and the elem
 }
 
 TEST_CASE("glTF: an empty or truncated file names the file", "[gltf][errors]") {
-  ScratchDir dir("gltf-empty");
-  const auto empty = dir.path / "empty.glb";
+  TempDir dir("gltf-empty");
+  const auto empty = dir / "empty.glb";
   write_file_atomic(empty, "");
   CHECK_THROWS_AS(load(empty), InputError);
   CHECK_THROWS_WITH(load(empty), Contains("empty.glb") && Contains("JSON"));
-  const auto cut = dir.path / "cut.gltf";
-  test::morph_quad().save(dir.path / "whole.gltf", false);
-  const std::string text = read_file(dir.path / "whole.gltf");
+  const auto cut = dir / "cut.gltf";
+  test::morph_quad().save(dir / "whole.gltf", false);
+  const std::string text = read_file(dir / "whole.gltf");
   write_file_atomic(cut, text.substr(0, text.size() / 2));
   CHECK_THROWS_WITH(load(cut), Contains("cut.gltf") && Contains("not valid JSON"));
 }
 
 TEST_CASE("glTF: a node's mesh or skin index out of range is named", "[gltf][errors]") {
   // Found by fuzzing: choosing the default mesh read meshes[node.mesh] unchecked.
-  ScratchDir dir("gltf-node-index");
-  const auto path = dir.path / "bad.glb";
+  TempDir dir("gltf-node-index");
+  const auto path = dir / "bad.glb";
   for (const char* member : {"mesh", "skin"}) {
     ModelBuilder b = test::morph_quad();
     size_t node = 0;

@@ -5,15 +5,16 @@
 #include "io/atomic_file.hpp"
 #include "io/gltf_load.hpp"
 #include "io/gltf_write.hpp"
-#include "io/test_gltf_models.hpp"
 #include "mesh/errors.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 namespace sm {
 namespace {
 
 using Catch::Contains;
 using test::ModelBuilder;
-using test::ScratchDir;
+using test::TempDir;
 
 GltfSequence load(const std::filesystem::path& file, const std::string& mesh = "",
                   const std::string& animation = "") {
@@ -21,8 +22,8 @@ GltfSequence load(const std::filesystem::path& file, const std::string& mesh = "
 }
 
 TEST_CASE("glTF: truncated or malformed GLB and JSON", "[gltf]") {
-  ScratchDir dir("gltf-bad-container");
-  const auto path = dir.path / "quad.glb";
+  TempDir dir("gltf-bad-container");
+  const auto path = dir / "quad.glb";
   test::morph_quad().save(path, true);
   const std::string bytes = read_file(path);
 
@@ -36,7 +37,7 @@ TEST_CASE("glTF: truncated or malformed GLB and JSON", "[gltf]") {
   write_file_atomic(path, wrong_version);
   CHECK_THROWS_WITH(load(path), Contains("GLB header") && Contains("version 1"));
 
-  const auto json = dir.path / "broken.gltf";
+  const auto json = dir / "broken.gltf";
   write_file_atomic(json, "{\"asset\": {\"version\": \"2.0\"}, ");
   CHECK_THROWS_WITH(load(json), Contains("broken.gltf") && Contains("JSON"));
   write_file_atomic(json,
@@ -45,16 +46,16 @@ TEST_CASE("glTF: truncated or malformed GLB and JSON", "[gltf]") {
                     R"([{"buffer": 0, "byteLength": "four"}], "images": [{"bufferView": 0}]})");
   CHECK_THROWS_AS(load(json), InputError);
   CHECK_THROWS_WITH(load(json), Contains("broken.gltf") && Contains("JSON"));
-  CHECK_THROWS_AS(load(dir.path / "missing.glb"), IoError);
+  CHECK_THROWS_AS(load(dir / "missing.glb"), IoError);
 }
 
 TEST_CASE("glTF: missing buffer or image file", "[gltf]") {
-  ScratchDir dir("gltf-bad-buffer");
-  const auto path = dir.path / "quad.gltf";
+  TempDir dir("gltf-bad-buffer");
+  const auto path = dir / "quad.gltf";
   test::morph_quad().save(path, false);
-  REQUIRE(std::filesystem::exists(dir.path / "quad.bin"));
+  REQUIRE(std::filesystem::exists(dir / "quad.bin"));
   CHECK_NOTHROW(load(path));
-  std::filesystem::remove(dir.path / "quad.bin");
+  std::filesystem::remove(dir / "quad.bin");
   CHECK_THROWS_AS(load(path), InputError);
   CHECK_THROWS_WITH(load(path), Contains("quad.gltf") && Contains("buffers[0]") &&
                                     Contains("quad.bin") && Contains("not found"));
@@ -64,14 +65,14 @@ TEST_CASE("glTF: missing buffer or image file", "[gltf]") {
   b.m.buffers.emplace_back();
   b.m.buffers[1].data = {1, 2, 3, 4};
   b.m.buffers[1].uri = "extra.bin";
-  b.save(dir.path / "two.gltf", false);
-  std::filesystem::remove(dir.path / "extra.bin");
-  CHECK_THROWS_WITH(load(dir.path / "two.gltf"), Contains("buffers[1]") && Contains("extra.bin"));
+  b.save(dir / "two.gltf", false);
+  std::filesystem::remove(dir / "extra.bin");
+  CHECK_THROWS_WITH(load(dir / "two.gltf"), Contains("buffers[1]") && Contains("extra.bin"));
 }
 
 TEST_CASE("glTF: out-of-range index, accessor, node, non-triangle primitive", "[gltf]") {
-  ScratchDir dir("gltf-bad-elements");
-  const auto path = dir.path / "bad.glb";
+  TempDir dir("gltf-bad-elements");
+  const auto path = dir / "bad.glb";
   {
     ModelBuilder b = test::morph_quad();
     const tinygltf::Accessor& idx = b.m.accessors[size_t(b.m.meshes[0].primitives[0].indices)];
@@ -135,8 +136,8 @@ TEST_CASE("glTF: out-of-range index, accessor, node, non-triangle primitive", "[
 }
 
 TEST_CASE("glTF: no animation, unknown mesh or animation, bad fps", "[gltf]") {
-  ScratchDir dir("gltf-bad-choice");
-  const auto path = dir.path / "quad.glb";
+  TempDir dir("gltf-bad-choice");
+  const auto path = dir / "quad.glb";
   ModelBuilder b = test::morph_quad();
   b.save(path, true);
   CHECK_THROWS_WITH(load(path, "nope"),
@@ -154,11 +155,11 @@ TEST_CASE("glTF: no animation, unknown mesh or animation, bad fps", "[gltf]") {
 }
 
 TEST_CASE("glTF writer: a bad corrected frame is an error and nothing is written", "[gltf]") {
-  ScratchDir dir("gltf-bad-write");
-  test::morph_quad().save(dir.path / "quad.glb", true);
-  const GltfSequence s = load(dir.path / "quad.glb");
+  TempDir dir("gltf-bad-write");
+  test::morph_quad().save(dir / "quad.glb", true);
+  const GltfSequence s = load(dir / "quad.glb");
   std::vector<Positions> frames(size_t(s.num_frames()), s.rest.V);
-  const auto out = dir.path / "out" / "sequence.glb";
+  const auto out = dir / "out" / "sequence.glb";
   frames[1] = Positions::Zero(3, 3);
   CHECK_THROWS_WITH(write_gltf_sequence(out, s, frames),
                     Contains("sequence.glb") && Contains("frame 1") && Contains("3 vertices"));

@@ -7,14 +7,15 @@
 #include "io/gltf_accessor.hpp"
 #include "io/gltf_animation.hpp"
 #include "io/gltf_load.hpp"
-#include "io/test_gltf_models.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 namespace sm {
 namespace {
 
 using test::ModelBuilder;
 using test::require_close;
-using test::ScratchDir;
+using test::TempDir;
 
 const GltfAccessorRule kAnything{"test",
                                  {TINYGLTF_TYPE_SCALAR, TINYGLTF_TYPE_VEC2, TINYGLTF_TYPE_VEC3,
@@ -64,9 +65,9 @@ TEST_CASE("glTF accessors decode every component type, stride, padding and spars
   sp.sparse.values.bufferView = b.view(subst, 8);
   sp.sparse.values.byteOffset = 0;
 
-  ScratchDir dir("gltf-accessors");
-  b.save(dir.path / "accessors.glb", true);
-  const GltfFile file = load_gltf_file(dir.path / "accessors.glb");
+  TempDir dir("gltf-accessors");
+  b.save(dir / "accessors.glb", true);
+  const GltfFile file = load_gltf_file(dir / "accessors.glb");
   const auto values = [&](int a) { return read_gltf_accessor(file, a, kAnything, "test").values; };
   CHECK(values(a_byte_n) == std::vector<double>{-1, -1, 0, 1});
   CHECK(values(a_byte) == std::vector<double>{-128, -127, 0, 127});
@@ -144,7 +145,7 @@ Positions morph_quad_expected(const TriMesh& rest, const test::MorphQuadOptions&
 }
 
 TEST_CASE("glTF morph-target quad matches the closed form for every interpolation", "[gltf]") {
-  ScratchDir dir("gltf-morph");
+  TempDir dir("gltf-morph");
   for (const char* interpolation : {"LINEAR", "STEP", "CUBICSPLINE"}) {
     for (bool ubyte : {false, true}) {
       for (bool binary : {true, false}) {
@@ -152,7 +153,7 @@ TEST_CASE("glTF morph-target quad matches the closed form for every interpolatio
         o.interpolation = interpolation;
         o.ubyte_weights = ubyte;
         o.sparse_target = !ubyte;
-        const std::filesystem::path file = dir.path / (binary ? "quad.glb" : "quad.gltf");
+        const std::filesystem::path file = dir / (binary ? "quad.glb" : "quad.gltf");
         test::morph_quad(o).save(file, binary);
         INFO(interpolation << (ubyte ? " ubyte" : " float") << (binary ? " glb" : " gltf"));
         GltfSequence s = load_gltf_sequence({file, "", "", std::nullopt});
@@ -179,10 +180,10 @@ TEST_CASE("glTF morph-target quad matches the closed form for every interpolatio
 }
 
 TEST_CASE("glTF node hierarchy: slerped rotation, cubic translation, stepped scale", "[gltf]") {
-  ScratchDir dir("gltf-nodes");
-  test::node_animated_triangle().save(dir.path / "nodes.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "nodes.glb", "", "", 10.0});
-  CHECK(load_gltf_sequence({dir.path / "nodes.glb", "", "", std::nullopt}).times ==
+  TempDir dir("gltf-nodes");
+  test::node_animated_triangle().save(dir / "nodes.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "nodes.glb", "", "", 10.0});
+  CHECK(load_gltf_sequence({dir / "nodes.glb", "", "", std::nullopt}).times ==
         std::vector<double>{0, 1, 1.5, 2});
   REQUIRE(s.num_frames() == 21);
   for (int k = 0; k < s.num_frames(); ++k) {
@@ -204,11 +205,11 @@ TEST_CASE("glTF node hierarchy: slerped rotation, cubic translation, stepped sca
 }
 
 TEST_CASE("glTF two-bone skinned strip matches linear blend skinning in closed form", "[gltf]") {
-  ScratchDir dir("gltf-skin");
+  TempDir dir("gltf-skin");
   for (bool two_sets : {false, true}) {
     INFO((two_sets ? "JOINTS_0/1, normalized byte weights" : "JOINTS_0, float weights"));
-    test::skinned_strip(two_sets).save(dir.path / "strip.glb", true);
-    const GltfSequence s = load_gltf_sequence({dir.path / "strip.glb", "", "", 20.0});
+    test::skinned_strip(two_sets).save(dir / "strip.glb", true);
+    const GltfSequence s = load_gltf_sequence({dir / "strip.glb", "", "", 20.0});
     CHECK(s.mesh_name == "strip");
     CHECK(s.gltf_vertices == 12);
     CHECK(s.welded_vertices == 2);  // the UV seam at x = 1
@@ -234,25 +235,25 @@ TEST_CASE("glTF two-bone skinned strip matches linear blend skinning in closed f
 }
 
 TEST_CASE("glTF morph weights default to the node's, else the mesh's", "[gltf]") {
-  ScratchDir dir("gltf-default-weights");
+  TempDir dir("gltf-default-weights");
   test::ModelBuilder b = test::morph_quad();
   b.m.animations.clear();  // no weights channel: a translation channel drives the sequence
   b.channel(0, "translation", {0, 1}, {1, 2, 3, 1, 2, 4}, "LINEAR");
-  b.save(dir.path / "quad.glb", true);
-  GltfSequence s = load_gltf_sequence({dir.path / "quad.glb", "", "", std::nullopt});
+  b.save(dir / "quad.glb", true);
+  GltfSequence s = load_gltf_sequence({dir / "quad.glb", "", "", std::nullopt});
   Positions V = evaluate_gltf_frame(s, 1).V;
   CHECK(V(2, 2) == Approx(4.5));  // mesh weights (0.5, 0), translation z = 4
   CHECK(V(3, 2) == Approx(4));
   b.m.nodes[0].weights = {0.25, 1};
-  b.save(dir.path / "quad.glb", true);
-  s = load_gltf_sequence({dir.path / "quad.glb", "", "", std::nullopt});
+  b.save(dir / "quad.glb", true);
+  s = load_gltf_sequence({dir / "quad.glb", "", "", std::nullopt});
   V = evaluate_gltf_frame(s, 1).V;
   CHECK(V(2, 2) == Approx(4.25));
   CHECK(V(3, 2) == Approx(6));
 }
 
 TEST_CASE("glTF rotation keys as normalized shorts are decoded and normalized", "[gltf]") {
-  ScratchDir dir("gltf-short-rotation");
+  TempDir dir("gltf-short-rotation");
   test::ModelBuilder b = test::node_animated_triangle();
   const double half = 85 * M_PI / 180;
   const int16_t q[8] = {0,
@@ -265,8 +266,8 @@ TEST_CASE("glTF rotation keys as normalized shorts are decoded and normalized", 
                         int16_t(std::lround(std::cos(half) * 32767))};
   b.m.animations[0].samplers[0].output =
       b.accessor(b.view(q, sizeof q), TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4, 2, true);
-  b.save(dir.path / "nodes.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "nodes.glb", "", "", 4.0});
+  b.save(dir / "nodes.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "nodes.glb", "", "", 4.0});
   const double end = 2 * std::atan2(q[6] / 32767.0, q[7] / 32767.0);  // the quantized angle
   for (int k = 0; k <= 4; ++k) {  // t in [0, 1]: translation and scale as in the float model
     const double t = s.times[size_t(k)], u = t / 2;

@@ -5,9 +5,10 @@
 
 #include "io/gltf_load.hpp"
 #include "io/gltf_write.hpp"
-#include "io/test_gltf_models.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/topology.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 namespace sm {
 namespace {
@@ -18,7 +19,7 @@ const fs::path kGltfDir = test::shared_gltf_dir();
 
 TEST_CASE("real glTF models load, weld, write valid GLB and read back", "[gltf][data]") {
   if (!test::have_shared_gltf()) return;
-  test::ScratchDir dir("gltf-real");
+  test::TempDir dir("gltf-real");
   for (const test::SharedGltfModel& model : test::kSharedGltfModels) {
     INFO(model.file);
     const GltfSequence s = load_gltf_sequence({kGltfDir / model.file, "", "", std::nullopt});
@@ -40,7 +41,7 @@ TEST_CASE("real glTF models load, weld, write valid GLB and read back", "[gltf][
       REQUIRE(f.V.allFinite());
       frames.push_back(f.V);
     }
-    const fs::path out = dir.path / (fs::path(model.file).stem().string() + ".glb");
+    const fs::path out = dir / (fs::path(model.file).stem().string() + ".glb");
     const GltfWriteOptions options;
     const GltfWriteReport report = write_gltf_sequence(out, s, frames, options);
     CHECK(report.meshes == (model.frames + options.frames_per_mesh - 1) / options.frames_per_mesh);

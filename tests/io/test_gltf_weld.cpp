@@ -4,14 +4,15 @@
 
 #include "io/gltf_load.hpp"
 #include "io/gltf_weld.hpp"
-#include "io/test_gltf_models.hpp"
 #include "mesh/topology.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 namespace sm {
 namespace {
 
 using test::ModelBuilder;
-using test::ScratchDir;
+using test::TempDir;
 
 /// A unit square as two non-indexed primitives (one triangle each, 6 glTF vertices), or as one
 /// primitive of the given mode over the corners (0,0), (1,0), (0,1), (1,1) (strip order) or
@@ -42,9 +43,9 @@ ModelBuilder square(int mode) {
 }
 
 TEST_CASE("glTF welding joins non-indexed primitives into one connectivity", "[gltf]") {
-  ScratchDir dir("gltf-weld");
-  square(TINYGLTF_MODE_TRIANGLES).save(dir.path / "square.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "square.glb", "", "", std::nullopt});
+  TempDir dir("gltf-weld");
+  square(TINYGLTF_MODE_TRIANGLES).save(dir / "square.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "square.glb", "", "", std::nullopt});
   CHECK(s.gltf_vertices == 6);
   CHECK(s.welded_vertices == 2);
   CHECK(s.weld_map == std::vector<int>{0, 1, 2, 0, 2, 3});
@@ -60,10 +61,10 @@ TEST_CASE("glTF welding joins non-indexed primitives into one connectivity", "[g
 }
 
 TEST_CASE("glTF triangle strips and fans become counter-clockwise triangles", "[gltf]") {
-  ScratchDir dir("gltf-strip");
+  TempDir dir("gltf-strip");
   for (int mode : {TINYGLTF_MODE_TRIANGLE_STRIP, TINYGLTF_MODE_TRIANGLE_FAN}) {
-    square(mode).save(dir.path / "square.glb", true);
-    const GltfSequence s = load_gltf_sequence({dir.path / "square.glb", "", "", std::nullopt});
+    square(mode).save(dir / "square.glb", true);
+    const GltfSequence s = load_gltf_sequence({dir / "square.glb", "", "", std::nullopt});
     REQUIRE(s.rest.num_triangles() == 2);
     for (int t = 0; t < 2; ++t) {
       const Vec3 a = s.rest.vertex(s.rest.F(t, 0)), b = s.rest.vertex(s.rest.F(t, 1)),
@@ -98,7 +99,7 @@ TEST_CASE("glTF weld map: unreferenced vertices, collapsed triangles, mean of co
 }
 
 TEST_CASE("glTF copies whose skin weights differ are counted, not fatal", "[gltf]") {
-  ScratchDir dir("gltf-separate");
+  TempDir dir("gltf-separate");
   ModelBuilder b = test::skinned_strip(false);
   // Give the copy at x = 1, y = 1 (glTF vertex 7) bone weights (0.2, 0.8) instead of (0.5, 0.5).
   const tinygltf::Accessor& a =
@@ -106,8 +107,8 @@ TEST_CASE("glTF copies whose skin weights differ are counted, not fatal", "[gltf
   const tinygltf::BufferView& v = b.m.bufferViews[size_t(a.bufferView)];
   const float w[2] = {0.2f, 0.8f};
   std::memcpy(b.m.buffers[0].data.data() + v.byteOffset + 7 * 16, w, 8);
-  b.save(dir.path / "strip.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "strip.glb", "", "", std::nullopt});
+  b.save(dir / "strip.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "strip.glb", "", "", std::nullopt});
   CHECK(s.welded_vertices == 2);
   CHECK(evaluate_gltf_frame(s, 0).separated_vertices == 0);  // no rotation yet
   const WeldedFrame f = evaluate_gltf_frame(s, 1);

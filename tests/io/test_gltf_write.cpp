@@ -6,14 +6,15 @@
 #include "io/gltf_accessor.hpp"
 #include "io/gltf_load.hpp"
 #include "io/gltf_write.hpp"
-#include "io/test_gltf_models.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 namespace sm {
 namespace {
 
 using nlohmann::json;
 using test::require_close;
-using test::ScratchDir;
+using test::TempDir;
 
 std::vector<Positions> evaluated_frames(const GltfSequence& s) {
   std::vector<Positions> frames;
@@ -22,14 +23,14 @@ std::vector<Positions> evaluated_frames(const GltfSequence& s) {
 }
 
 TEST_CASE("glTF writer round trip keeps positions, times, materials, textures and UVs", "[gltf]") {
-  ScratchDir dir("gltf-write");
-  test::skinned_strip().save(dir.path / "strip.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "strip.glb", "", "", 20.0});
+  TempDir dir("gltf-write");
+  test::skinned_strip().save(dir / "strip.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "strip.glb", "", "", 20.0});
   std::vector<Positions> corrected = evaluated_frames(s);
   for (int k = 0; k < s.num_frames(); ++k) {  // something the source does not contain
     corrected[size_t(k)].col(2).array() += 0.01 * k * corrected[size_t(k)].col(0).array();
   }
-  const auto out = dir.path / "out" / "sequence.glb";
+  const auto out = dir / "out" / "sequence.glb";
   const GltfWriteReport report = write_gltf_sequence(out, s, corrected);
   CHECK(report.frames == 21);
   CHECK(report.meshes == 1);
@@ -50,7 +51,7 @@ TEST_CASE("glTF writer round trip keeps positions, times, materials, textures an
     require_close(f.V, corrected[size_t(k)]);
   }
 
-  const GltfFile src = load_gltf_file(dir.path / "strip.glb");
+  const GltfFile src = load_gltf_file(dir / "strip.glb");
   const GltfFile written = load_gltf_file(out);
   for (const char* key : {"materials", "textures", "samplers"})
     CHECK(written.json[key] == src.json[key]);
@@ -71,9 +72,9 @@ TEST_CASE("glTF writer round trip keeps positions, times, materials, textures an
 }
 
 TEST_CASE("glTF writer turns normals and tangents with the corrected surface", "[gltf]") {
-  ScratchDir dir("gltf-normals");
-  test::morph_quad().save(dir.path / "quad.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "quad.glb", "", "", 2.0});
+  TempDir dir("gltf-normals");
+  test::morph_quad().save(dir / "quad.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "quad.glb", "", "", 2.0});
   REQUIRE(s.num_frames() == 5);
   std::vector<Eigen::Matrix3d> turn;
   std::vector<Positions> corrected;
@@ -81,7 +82,7 @@ TEST_CASE("glTF writer turns normals and tangents with the corrected surface", "
     turn.push_back(Eigen::AngleAxisd(0.3 * k, Vec3::UnitY()).toRotationMatrix());
     corrected.push_back(s.rest.V * turn.back().transpose());
   }
-  const auto out = dir.path / "quad-out.glb";
+  const auto out = dir / "quad-out.glb";
   write_gltf_sequence(out, s, corrected);
   test::require_valid_gltf(out);
 
@@ -117,14 +118,14 @@ TEST_CASE("glTF writer turns normals and tangents with the corrected surface", "
 }
 
 TEST_CASE("glTF writer splits long sequences over meshes shown in turn", "[gltf]") {
-  ScratchDir dir("gltf-chunks");
-  test::node_animated_triangle().save(dir.path / "nodes.glb", true);
-  const GltfSequence s = load_gltf_sequence({dir.path / "nodes.glb", "", "", 10.0});
+  TempDir dir("gltf-chunks");
+  test::node_animated_triangle().save(dir / "nodes.glb", true);
+  const GltfSequence s = load_gltf_sequence({dir / "nodes.glb", "", "", 10.0});
   REQUIRE(s.num_frames() == 21);
   const std::vector<Positions> corrected = evaluated_frames(s);
   GltfWriteOptions options;
   options.frames_per_mesh = 4;
-  const auto out = dir.path / "chunks.glb";
+  const auto out = dir / "chunks.glb";
   const GltfWriteReport report = write_gltf_sequence(out, s, corrected, options);
   CHECK(report.meshes == 6);
   test::require_valid_gltf(out);

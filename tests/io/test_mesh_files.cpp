@@ -9,16 +9,17 @@
 #include "io/atomic_file.hpp"
 #include "io/frame_folder.hpp"
 #include "io/mesh_file.hpp"
-#include "io/scratch_dir.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
+#include "support/error_of.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
-using sm::test::message_of;
+using sm::test::error_of;
 
 TEST_CASE("read_mesh and write_mesh choose the format by extension", "[mesh_file]") {
   const TriMesh m = make_torus(6, 4, 2.0, 0.5);
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   for (const char* name : {"t.obj", "t.OFF", "t.Ply", "sub/t.OBJ"}) {
     INFO(name);
     write_mesh(dir / name, m);
@@ -30,9 +31,9 @@ TEST_CASE("read_mesh and write_mesh choose the format by extension", "[mesh_file
   CHECK(read_file(dir / "t.OFF").rfind("OFF\n", 0) == 0);
   CHECK(read_file(dir / "t.Ply").rfind("ply\nformat binary_little_endian 1.0\n", 0) == 0);
   const auto stl = dir / "t.stl";
-  CHECK(message_of<InputError>([&] { read_mesh(stl); }) ==
+  CHECK(error_of<InputError>([&] { read_mesh(stl); }) ==
         "'" + stl.string() + "': unknown mesh file extension '.stl' (expected .obj, .off or .ply)");
-  CHECK(message_of<InputError>([&] { write_mesh(dir / "noext", m); }) ==
+  CHECK(error_of<InputError>([&] { write_mesh(dir / "noext", m); }) ==
         "'" + (dir / "noext").string() +
             "': unknown mesh file extension '' (expected .obj, .off or .ply)");
   CHECK(!std::filesystem::exists(stl));
@@ -64,7 +65,7 @@ TEST_CASE("natural order compares runs of digits by value", "[frames]") {
 }
 
 TEST_CASE("list_frames returns the matching files in natural order", "[frames]") {
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   for (const char* name : {"frame_10.obj", "frame_2.obj", "frame_1.OBJ", "notes.txt",
                            ".hidden_3.obj", "frame_3.obj.seqmassage-tmp", "frame_0.ply"}) {
     std::ofstream(dir / name) << "x";
@@ -78,10 +79,10 @@ TEST_CASE("list_frames returns the matching files in natural order", "[frames]")
   CHECK(list_frames(dir.path(), "PLY") == std::vector<std::filesystem::path>{dir / "frame_0.ply"});
 
   const auto missing = dir / "missing";
-  CHECK(message_of<IoError>([&] { list_frames(missing); }) ==
+  CHECK(error_of<IoError>([&] { list_frames(missing); }) ==
         "frame folder '" + missing.string() + "' does not exist");
-  CHECK(message_of<InputError>([&] { list_frames(dir / "notes.txt"); }) ==
+  CHECK(error_of<InputError>([&] { list_frames(dir / "notes.txt"); }) ==
         "frame folder '" + (dir / "notes.txt").string() + "' is not a folder");
-  CHECK(message_of<InputError>([&] { list_frames(dir.path(), ".off"); }) ==
+  CHECK(error_of<InputError>([&] { list_frames(dir.path(), ".off"); }) ==
         "frame folder '" + dir.path().string() + "' has no .off files");
 }

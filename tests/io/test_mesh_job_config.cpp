@@ -6,6 +6,7 @@
 
 #include "io/config.hpp"
 #include "mesh/errors.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 using json = nlohmann::json;
@@ -154,14 +155,13 @@ TEST_CASE("parse_any_config dispatches on the job kind") {
   CHECK(std::get<MeshJobConfig>(mesh).job == JobKind::Smooth);
   CHECK(job_name(JobKind::Crossparam) == "crossparam");
 
-  const fs::path dir = fs::temp_directory_path() / "seqmassage_test_mesh_job_config";
-  fs::remove_all(dir);
+  const test::TempDir temp("mesh_job_config");
+  const fs::path& dir = temp.path();
   fs::create_directories(dir);
   std::ofstream(dir / "job.json") << kRemesh;
   const AnyJobConfig loaded = load_any_config(dir / "job.json");
   REQUIRE(std::holds_alternative<MeshJobConfig>(loaded));
   CHECK(std::get<MeshJobConfig>(loaded).input.reference == dir / "bunny.off");
-  fs::remove_all(dir);
 }
 
 TEST_CASE("bad single-mesh configs name the key") {

@@ -5,11 +5,12 @@
 #include <string>
 
 #include "io/obj.hpp"
-#include "io/scratch_dir.hpp"
 #include "mesh/errors.hpp"
+#include "support/error_of.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
-using sm::test::message_of;
+using sm::test::error_of;
 
 namespace {
 
@@ -42,7 +43,7 @@ const char* const kFeatures =
     "f -2/-1 -1/-2 -5/-3\n";
 
 std::string obj_error(const std::string& text) {
-  return message_of<InputError>([&] { parse_obj(text, "bad.obj"); });
+  return error_of<InputError>([&] { parse_obj(text, "bad.obj"); });
 }
 
 }  // namespace
@@ -201,18 +202,18 @@ TEST_CASE("malformed OBJ: messages name the file, the line and the field", "[obj
 }
 
 TEST_CASE("read_obj names the path in its messages", "[obj][errors]") {
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   const auto missing = dir / "missing.obj";
-  const std::string io = message_of<IoError>([&] { read_obj(missing); });
+  const std::string io = error_of<IoError>([&] { read_obj(missing); });
   CHECK(io.find(missing.string()) != std::string::npos);
   const auto bad = dir / "bad.obj";
   write_obj(bad, parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "t.obj"), Positions::Zero(3, 3));
   const ObjFile f = read_obj(bad);
   CHECK(f.name == bad.string());
-  CHECK(message_of<InputError>([&] { format_obj(f, Positions::Zero(2, 3)); }) ==
+  CHECK(error_of<InputError>([&] { format_obj(f, Positions::Zero(2, 3)); }) ==
         "cannot write OBJ '" + bad.string() + "': 2 positions given for 3 vertices");
   Positions V = Positions::Zero(3, 3);
   V(1, 2) = std::nan("");
-  CHECK(message_of<InputError>([&] { format_obj(f, V); }) ==
+  CHECK(error_of<InputError>([&] { format_obj(f, V); }) ==
         "cannot write OBJ '" + bad.string() + "': vertex 2 has a non-finite coordinate");
 }

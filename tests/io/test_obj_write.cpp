@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "io/obj.hpp"
-#include "io/scratch_dir.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
+#include "support/error_of.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 
@@ -211,13 +212,13 @@ TEST_CASE("plain OBJ of a triangle mesh", "[obj][write]") {
   m.F.resize(1, 3);
   m.F << 0, 1, 2;
   CHECK(format_obj(m) == "v 0 0 0\nv 1.5 0 0\nv 0 0.25 -2\nf 1 2 3\n");
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   write_obj(dir / "plain.obj", m);
   const ObjFile f = read_obj(dir / "plain.obj");
   CHECK(f.mesh.V == m.V);
   CHECK(f.mesh.F == m.F);
   m.F(0, 2) = 3;
-  CHECK(sm::test::message_of<InputError>([&] { format_obj(m); }) ==
+  CHECK(sm::test::error_of<InputError>([&] { format_obj(m); }) ==
         "cannot write OBJ: triangle 0 refers to vertex 3, but the mesh has 3 vertices");
 }
 

@@ -6,12 +6,13 @@
 
 #include "io/off.hpp"
 #include "io/ply.hpp"
-#include "io/scratch_dir.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
+#include "support/error_of.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
-using sm::test::message_of;
+using sm::test::error_of;
 
 namespace {
 
@@ -29,11 +30,11 @@ TriMesh odd_mesh() {
 }
 
 std::string off_error(const std::string& text) {
-  return message_of<InputError>([&] { parse_off(text, "bad.off"); });
+  return error_of<InputError>([&] { parse_off(text, "bad.off"); });
 }
 
 std::string ply_error(const std::string& data) {
-  return message_of<InputError>([&] { parse_ply(data, "bad.ply"); });
+  return error_of<InputError>([&] { parse_ply(data, "bad.ply"); });
 }
 
 template <class T>
@@ -110,7 +111,7 @@ TEST_CASE("OFF round trip is exact", "[off]") {
   const TriMesh back = parse_off(text, "ico.off");
   CHECK(bit_equal(back.V, m.V));
   CHECK(back.F == m.F);
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   write_off(dir / "ico.off", m);
   CHECK(bit_equal(read_off(dir / "ico.off").V, m.V));
 }
@@ -251,7 +252,7 @@ TEST_CASE("PLY round trips: ASCII and binary, with and without colours", "[ply]"
             "property list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
             "property uchar blue\nend_header\n0.30000000000000004 ",
             0) == 0);
-  sm::test::ScratchDir dir;
+  sm::test::TempDir dir;
   write_ply(dir / "c.ply", m, &colors, true);
   PlyColors read_colors;
   CHECK(bit_equal(read_ply(dir / "c.ply", &read_colors).V, m.V));
@@ -259,7 +260,7 @@ TEST_CASE("PLY round trips: ASCII and binary, with and without colours", "[ply]"
 
   PlyColors wrong;
   wrong.vertex.resize(3);
-  CHECK(message_of<InputError>([&] { format_ply(m, &wrong); }) ==
+  CHECK(error_of<InputError>([&] { format_ply(m, &wrong); }) ==
         "cannot write PLY: 3 vertex colours for 42 vertices");
 }
 

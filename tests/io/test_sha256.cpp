@@ -2,9 +2,9 @@
 #include <catch2/catch.hpp>
 #include <fstream>
 
-#include "io/scratch_dir.hpp"
 #include "io/sha256.hpp"
 #include "mesh/errors.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 
@@ -25,7 +25,7 @@ TEST_CASE("SHA-256 of the standard examples") {
 }
 
 TEST_CASE("SHA-256 of a file, and of a missing one") {
-  test::ScratchDir dir;
+  test::TempDir dir;
   std::ofstream(dir / "abc.txt", std::ios::binary) << "abc";
   CHECK(sha256_file(dir / "abc.txt") ==
         "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");

@@ -5,20 +5,12 @@
 #include "massage/correspondence.hpp"
 #include "massage/massage.hpp"
 #include "mesh/primitives.hpp"
+#include "support/brute_force_closest.hpp"
 
 using namespace sm;
+using test::brute_force_dist2;
 
 namespace {
-
-double brute_force_dist2(const TriMesh& mesh, const Vec3& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int t = 0; t < mesh.num_triangles(); ++t)
-    best = std::min(
-        best, closest_point_on_triangle(p, mesh.vertex(mesh.F(t, 0)), mesh.vertex(mesh.F(t, 1)),
-                                        mesh.vertex(mesh.F(t, 2)))
-                  .dist2);
-  return best;
-}
 
 struct Surface {
   TriMesh mesh;

@@ -11,7 +11,6 @@
 #include "io/obj.hpp"
 #include "io/ply.hpp"
 #include "io/png.hpp"
-#include "io/test_gltf_models.hpp"
 #include "massage/reference.hpp"
 #include "pipeline/checker.hpp"
 #include "pipeline/frame_extras.hpp"
@@ -19,9 +18,13 @@
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/shear_ply.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/gltf_models.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
+#include "support/text_files.hpp"
 
 using namespace sm;
+using test::read_csv;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -30,40 +33,16 @@ namespace {
 // A folder of drifted frames under `dir`/in, a job on it writing to `dir`/out with every visual
 // output on.
 JobConfig visual_job(const fs::path& dir, int frames = 5) {
-  SyntheticConfig s;
-  s.frames = frames;
-  s.segments = 12;
-  s.rings = 10;
+  SyntheticConfig s = test::small_tube(frames);
   s.drift = 0.8;
-  write_synthetic_sequence(make_synthetic_sequence(s), dir / "in", dir / "gt");
-  JobConfig c;
-  c.input.frames = dir / "in";
-  c.output.dir = dir / "out";
-  c.output.per_triangle_csv = true;
-  c.output.timings = false;
+  JobConfig c = test::tube_job(dir, s);
   c.output.colored.enabled = true;
   c.output.colored.max = 0.05;
   c.output.checker.enabled = true;
   c.output.iterations.enabled = true;
   c.output.iterations.shear_frames = FrameSelection{FrameSelection::Kind::List, {3}, 0, {}, 1};
   c.massage.iterations = 6;
-  c.threads = 2;
   return c;
-}
-
-// A CSV file as rows of cells (header first).
-std::vector<std::vector<std::string>> read_csv(const fs::path& file) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream lines(read_file(file));
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream in(line);
-    while (std::getline(in, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.push_back("");
-    rows.push_back(cells);
-  }
-  return rows;
 }
 
 size_t column(const std::vector<std::vector<std::string>>& rows, const std::string& name) {
@@ -76,7 +55,7 @@ size_t column(const std::vector<std::vector<std::string>>& rows, const std::stri
 }  // namespace
 
 TEST_CASE("colored PLY files carry the per-triangle CSV's shear as colours, before and after") {
-  test::TempFolder dir("extras_colored");
+  test::TempDir dir("extras_colored");
   const JobConfig c = visual_job(dir.path());
   const SequencePlan plan = plan_sequence_job(c);
   const std::string described = describe_plan(plan);
@@ -119,7 +98,7 @@ TEST_CASE("colored PLY files carry the per-triangle CSV's shear as colours, befo
 }
 
 TEST_CASE("checker frames share the template's texture coordinates; texture and material") {
-  test::TempFolder dir("extras_checker");
+  test::TempDir dir("extras_checker");
   const JobConfig c = visual_job(dir.path());
   const SequenceResult r = run_sequence_job(plan_sequence_job(c));
   const ObjFile templ = read_obj(dir / "in/frame_0000.obj");
@@ -152,7 +131,7 @@ TEST_CASE("checker frames share the template's texture coordinates; texture and 
 
 TEST_CASE(
     "iterations.csv: the engine's figures per iteration, shear after each for chosen frames") {
-  test::TempFolder dir("extras_iterations");
+  test::TempDir dir("extras_iterations");
   JobConfig c = visual_job(dir.path());
   c.massage.tolerance = 0.0;  // run every iteration
   const SequenceResult r = run_sequence_job(plan_sequence_job(c));
@@ -191,7 +170,7 @@ TEST_CASE(
 }
 
 TEST_CASE("visual outputs of chosen frames only; listed frames not processed are warned about") {
-  test::TempFolder dir("extras_frames");
+  test::TempDir dir("extras_frames");
   JobConfig c = visual_job(dir.path(), 6);
   c.output.colored.frames = FrameSelection{FrameSelection::Kind::List, {1, 4, 9}, 0, {}, 1};
   c.output.checker.frames = FrameSelection{FrameSelection::Kind::Range, {}, 0, std::nullopt, 2};
@@ -214,7 +193,7 @@ TEST_CASE("visual outputs of chosen frames only; listed frames not processed are
 }
 
 TEST_CASE("visual outputs are the same bytes with 1 or 2 threads") {
-  test::TempFolder dir("extras_threads");
+  test::TempDir dir("extras_threads");
   JobConfig c = visual_job(dir.path(), 6);
   c.output.iterations.shear_frames = FrameSelection{};  // all
   c.output.checker.uv = CheckerUvSource::Charts;
@@ -226,20 +205,12 @@ TEST_CASE("visual outputs are the same bytes with 1 or 2 threads") {
   c.frames_in_flight = 3;
   c.output.dir = dir / "two";
   run_sequence_job(plan_sequence_job(c));
-  int compared = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(dir / "one")) {
-    if (!entry.is_regular_file()) continue;
-    const fs::path rel = fs::relative(entry.path(), dir / "one");
-    if (rel == "report.json") continue;  // names its own output folder and thread count
-    INFO(rel);
-    CHECK(read_file(entry.path()) == read_file(dir / "two" / rel));
-    ++compared;
-  }
-  CHECK(compared > 6 * 6);
+  // report.json names its own output folder and thread count.
+  CHECK(test::compare_folders(dir / "one", dir / "two", "report.json").size() > 6 * 6);
 }
 
 TEST_CASE("checker charts on a rest mesh without texture coordinates; glTF input") {
-  test::TempFolder dir("extras_rest");
+  test::TempDir dir("extras_rest");
   SECTION("a rest mesh (OFF, no texture coordinates) as the template: charts") {
     JobConfig c = visual_job(dir.path(), 3);
     SyntheticConfig s;

@@ -9,7 +9,7 @@
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "pipeline/frame_record.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
@@ -72,7 +72,7 @@ TEST_CASE("a broken record names what is wrong") {
 }
 
 TEST_CASE("records are read back, their outputs checked by size and SHA-256") {
-  test::TempFolder dir("frame_record");
+  test::TempDir dir("frame_record");
   FrameRecord r;
   r.config_hash = "c";
   r.template_hash = "t";

@@ -9,15 +9,17 @@
 #include "io/atomic_file.hpp"
 #include "io/gltf_file.hpp"
 #include "io/obj.hpp"
-#include "io/test_gltf_models.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/topology.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/sequence_job.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/error_of.hpp"
+#include "support/gltf_models.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 using Catch::Contains;
+using test::error_of;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -49,16 +51,6 @@ std::vector<fs::path> files_under(const fs::path& dir) {
   return files;
 }
 
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // Every split copy of a welded vertex has exactly the same position in every frame of `glb`,
 // whose glTF vertices are those of `source` (the writer keeps the source's vertex order).
 void require_closed_seams(const GltfSequence& source, const GltfSequence& glb) {
@@ -85,7 +77,7 @@ void require_closed_seams(const GltfSequence& source, const GltfSequence& glb) {
 }  // namespace
 
 TEST_CASE("a skinned glTF runs to sequence.glb and to OBJ frames with the same results") {
-  test::TempFolder dir("gltf_job");
+  test::TempDir dir("gltf_job");
   test::skinned_strip().save(dir / "strip.glb", true);
   const GltfSequence source = load_gltf_sequence({dir / "strip.glb", "", "", 20.0});
   REQUIRE(source.num_frames() == 21);
@@ -163,7 +155,7 @@ TEST_CASE("a skinned glTF runs to sequence.glb and to OBJ frames with the same r
 }
 
 TEST_CASE("glTF jobs write the same bytes with 1 and 2 threads") {
-  test::TempFolder dir("gltf_threads");
+  test::TempDir dir("gltf_threads");
   test::skinned_strip(true).save(dir / "strip.gltf", false);  // .gltf + .bin, two weight sets
   for (const OutputFormat format : {OutputFormat::Gltf, OutputFormat::Obj}) {
     JobConfig c = gltf_job(dir / "strip.gltf", dir / "one", format, 15.0);
@@ -188,7 +180,7 @@ TEST_CASE("glTF jobs write the same bytes with 1 and 2 threads") {
 }
 
 TEST_CASE("morph-target and node-animated glTF: OBJ frames, frame selection into the GLB") {
-  test::TempFolder dir("gltf_kinds");
+  test::TempDir dir("gltf_kinds");
   test::morph_quad().save(dir / "quad.glb", true);
   JobConfig c = gltf_job(dir / "quad.glb", dir / "quad", OutputFormat::Obj);
   SequenceResult r = run_sequence_job(plan_sequence_job(c));
@@ -225,7 +217,7 @@ TEST_CASE("morph-target and node-animated glTF: OBJ frames, frame selection into
 }
 
 TEST_CASE("a cancelled glTF run writes no GLB and says so") {
-  test::TempFolder dir("gltf_cancel");
+  test::TempDir dir("gltf_cancel");
   test::morph_quad().save(dir / "quad.glb", true);
   std::atomic<bool> cancel{true};
   RunHooks hooks;
@@ -240,7 +232,7 @@ TEST_CASE("a cancelled glTF run writes no GLB and says so") {
 }
 
 TEST_CASE("bad glTF inputs are refused before anything is written, naming file and element") {
-  test::TempFolder dir("gltf_bad");
+  test::TempDir dir("gltf_bad");
   const fs::path out = dir / "out";
   const auto plan_error = [&](const fs::path& file, std::optional<double> fps = std::nullopt) {
     return error_of([&] { plan_sequence_job(gltf_job(file, out, OutputFormat::Gltf, fps)); });
@@ -302,7 +294,7 @@ TEST_CASE("bad glTF inputs are refused before anything is written, naming file a
 
 TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]") {
   if (!test::have_shared_gltf()) return;
-  test::TempFolder dir("gltf_real_job");
+  test::TempDir dir("gltf_real_job");
   for (const test::SharedGltfModel& model : test::kSharedGltfModels) {
     INFO(model.file);
     JobConfig c = gltf_job(test::shared_gltf_dir() / model.file, dir / "out", OutputFormat::Gltf);
@@ -336,7 +328,7 @@ TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]")
 
 TEST_CASE("real glTF models with several primitives give one OBJ group per primitive", "[data]") {
   if (!test::have_shared_gltf()) return;
-  test::TempFolder dir("gltf_real_obj");
+  test::TempDir dir("gltf_real_obj");
   JobConfig c =
       gltf_job(test::shared_gltf_dir() / "morph/MorphStressTest/glTF-Binary/MorphStressTest.glb",
                dir / "out", OutputFormat::Obj);
@@ -352,7 +344,7 @@ TEST_CASE("real glTF models with several primitives give one OBJ group per primi
 
 TEST_CASE("static real glTF models are a clear 'no animation' error, nothing written", "[data]") {
   if (!test::have_shared_gltf()) return;
-  test::TempFolder dir("gltf_real_static");
+  test::TempDir dir("gltf_real_static");
   for (const char* file : test::kStaticGltfModels) {
     INFO(file);
     const std::string message = error_of([&] {

@@ -6,9 +6,9 @@
 #include "io/csv.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/job_meshes.hpp"
 #include "pipeline/measures.hpp"
 #include "pipeline/mesh_report.hpp"
+#include "support/job_meshes.hpp"
 
 using namespace sm;
 using Catch::Matchers::Contains;

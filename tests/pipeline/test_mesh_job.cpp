@@ -10,12 +10,14 @@
 #include "io/off.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/job_meshes.hpp"
 #include "pipeline/mesh_job.hpp"
 #include "pipeline/mesh_report.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/error_of.hpp"
+#include "support/job_meshes.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
+using test::error_of;
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
@@ -30,16 +32,6 @@ MeshJobConfig job_config(JobKind job, const fs::path& dir, const std::string& me
   c.output.timings = false;
   c.threads = 2;
   return c;
-}
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // Runs a remesh of `pair` and returns the result.
@@ -62,7 +54,7 @@ TEST_CASE("remesh: a sphere's and a torus's remesh lose at least 40% of their Ha
        {std::tuple{"sphere", test::sphere_remesh_pair(), SampleKind::Vertices},
         std::tuple{"torus", test::torus_remesh_pair(), SampleKind::Edges}}) {
     INFO(name);
-    test::TempFolder dir(std::string("remesh_") + name);
+    test::TempDir dir(std::string("remesh_") + name);
     const MeshJobResult r = remesh(pair, dir.path(), samples);
     REQUIRE(r.ok());
     REQUIRE(r.after);
@@ -81,7 +73,7 @@ TEST_CASE("remesh: a sphere's and a torus's remesh lose at least 40% of their Ha
 TEST_CASE("smooth: a box's irregular triangles even out, its faces and sharp edges stay") {
   const test::Box box;
   const TriMesh mesh = test::jittered_box(box, 8, 0.3, 7);
-  test::TempFolder dir("smooth_box");
+  test::TempDir dir("smooth_box");
   write_mesh(dir / "box.obj", mesh);
   const MeshJobConfig c = job_config(JobKind::Smooth, dir.path(), "box.obj");
   const MeshJobResult r = run_mesh_job(plan_mesh_job(c));
@@ -110,7 +102,7 @@ TEST_CASE("pinned vertices do not move: a list, and the boundary of an open mesh
     grid.V(i, 1) += 0.03 * jitter();
     grid.V(i, 2) = 0.1 * std::sin(3 * grid.V(i, 0)) * std::cos(2 * grid.V(i, 1));
   }
-  test::TempFolder dir("pinned");
+  test::TempDir dir("pinned");
   write_mesh(dir / "grid.obj", grid);
   for (JobKind job : {JobKind::Smooth, JobKind::Crossparam, JobKind::Remesh}) {
     INFO(job_name(job));
@@ -150,7 +142,7 @@ TEST_CASE("pinned vertices do not move: a list, and the boundary of an open mesh
 
 TEST_CASE("crossparam: the target takes the template's triangle shapes on its own surface") {
   const test::CrossparamPair pair = test::crossparam_pair();
-  test::TempFolder dir("crossparam");
+  test::TempDir dir("crossparam");
   write_mesh(dir / "target.obj", pair.target);
   write_mesh(dir / "template.obj", pair.templ);
   MeshJobConfig c = job_config(JobKind::Crossparam, dir.path(), "target.obj");
@@ -176,7 +168,7 @@ TEST_CASE("crossparam: the target takes the template's triangle shapes on its ow
 }
 
 TEST_CASE("outputs: the input's name and format, measures.csv and report.json") {
-  test::TempFolder dir("mesh_job_outputs");
+  test::TempDir dir("mesh_job_outputs");
   const test::Box box;
   const TriMesh mesh = test::jittered_box(box, 4, 0.3, 1);
   // An OBJ with texture coordinates, a group and a comment: all kept, only v lines change.
@@ -250,7 +242,7 @@ TEST_CASE("outputs: the input's name and format, measures.csv and report.json") 
 
 TEST_CASE("the same job gives the same bytes with 1 or 2 threads") {
   const test::RemeshPair pair = test::sphere_remesh_pair();
-  test::TempFolder dir("mesh_job_threads");
+  test::TempDir dir("mesh_job_threads");
   write_mesh(dir / "remesh.off", pair.remesh);
   write_mesh(dir / "source.off", pair.source);
   std::string bytes[2][3];
@@ -276,7 +268,7 @@ TEST_CASE("the same job gives the same bytes with 1 or 2 threads") {
 }
 
 TEST_CASE("bad inputs are refused before anything is written, naming the file") {
-  test::TempFolder dir("mesh_job_errors");
+  test::TempDir dir("mesh_job_errors");
   const TriMesh sphere = make_icosphere(2, 1.0);
   write_mesh(dir / "target.obj", sphere);
   write_mesh(dir / "other.obj", make_icosphere(1, 1.0));

@@ -11,9 +11,9 @@
 #include "pipeline/frame_record.hpp"
 #include "pipeline/frame_sink.hpp"
 #include "pipeline/report.hpp"
-#include "pipeline/sequence_fixture.hpp"
 #include "pipeline/sequence_job.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
@@ -73,7 +73,7 @@ SequencePlan failing_plan(const JobConfig& c) {
 }  // namespace
 
 TEST_CASE("each failure kind fails its frame, which is written unchanged by default") {
-  test::TempFolder dir("safety_copy");
+  test::TempDir dir("safety_copy");
   const JobConfig c = test::tube_job(dir.path(), test::small_tube());
   const SequencePlan plan = failing_plan(c);
   const SequenceResult r = run_sequence_job(plan);
@@ -117,7 +117,7 @@ TEST_CASE("each failure kind fails its frame, which is written unchanged by defa
 }
 
 TEST_CASE("with on_failure \"skip\", a failed frame is not written, and stale outputs go") {
-  test::TempFolder dir("safety_skip");
+  test::TempDir dir("safety_skip");
   JobConfig c = test::tube_job(dir.path(), test::small_tube());
   // A first run writes every frame (nothing fails before the inputs are spoiled).
   run_sequence_job(plan_sequence_job(c));
@@ -141,7 +141,7 @@ TEST_CASE("with on_failure \"skip\", a failed frame is not written, and stale ou
 }
 
 TEST_CASE("folds below the limit are counted, reported, and do not fail the frame") {
-  test::TempFolder dir("safety_count");
+  test::TempDir dir("safety_count");
   JobConfig c = test::tube_job(dir.path(), test::small_tube(4));
   test::edit_obj_vertices(c.input.frames / "frame_0002.obj",
                           [](int v, double& x, double&, double&) {

@@ -4,14 +4,14 @@
 #include <catch2/catch.hpp>
 
 #include "io/atomic_file.hpp"
-#include "io/test_gltf_models.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/merge.hpp"
-#include "pipeline/sequence_fixture.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/shard.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/gltf_models.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
@@ -59,7 +59,7 @@ TEST_CASE("shards are contiguous blocks of the selection, named apart") {
 }
 
 TEST_CASE("a resumed run skips current frames and redoes the others, with the same bytes") {
-  test::TempFolder dir("resume_lib");
+  test::TempDir dir("resume_lib");
   JobConfig c = test::tube_job(dir.path(), test::small_tube());
   run(c);
   const auto first = test::folder_bytes(dir / "out");
@@ -99,7 +99,7 @@ TEST_CASE("a resumed run skips current frames and redoes the others, with the sa
 }
 
 TEST_CASE("an interrupted run, resumed, ends with the bytes of an uninterrupted one") {
-  test::TempFolder dir("resume_interrupted");
+  test::TempDir dir("resume_interrupted");
   JobConfig c = test::tube_job(dir.path(), test::small_tube(8));
   run(c);
   fs::rename(dir / "out", dir / "whole");  // the same path for both runs: report.json names it
@@ -117,17 +117,11 @@ TEST_CASE("an interrupted run, resumed, ends with the bytes of an uninterrupted 
   const SequenceResult resumed = run(c);
   CHECK_FALSE(resumed.interrupted);
   CHECK(resumed.resumed == int(stopped.frames.size()));
-  const auto whole = test::folder_bytes(dir / "whole");
-  const auto out = test::folder_bytes(dir / "out");
-  CHECK(test::names_of(out) == test::names_of(whole));
-  for (const auto& [name, bytes] : whole) {
-    INFO(name);
-    CHECK(out.at(name) == bytes);
-  }
+  test::compare_folders(dir / "whole", dir / "out");
 }
 
 TEST_CASE("three shards, merged, write exactly what one run writes") {
-  test::TempFolder dir("shards_lib");
+  test::TempDir dir("shards_lib");
   JobConfig c = test::tube_job(dir.path(), test::small_tube(8));
   c.input.range = {1, std::nullopt, 1};  // 7 frames: blocks of 2, 2, 3
   run(c);
@@ -136,13 +130,7 @@ TEST_CASE("three shards, merged, write exactly what one run writes") {
   CHECK(m.shards == 3);
   CHECK(m.frames.size() == 7);
   CHECK(m.written == std::vector<std::string>{"summary.csv", "report.json"});
-  const auto merged = test::folder_bytes(dir / "out", ".shard-");
-  const auto single = test::folder_bytes(dir / "single");
-  CHECK(test::names_of(merged) == test::names_of(single));
-  for (const auto& [name, bytes] : single) {
-    INFO(name);
-    CHECK(merged.at(name) == bytes);
-  }
+  test::compare_folders(dir / "single", dir / "out", ".shard-");
   // A shard's own report: its frames, complete, the plan's warnings.
   const nlohmann::json shard =
       nlohmann::json::parse(read_file(dir / "out/report.shard-2-of-3.json"))["shard"];
@@ -153,7 +141,7 @@ TEST_CASE("three shards, merged, write exactly what one run writes") {
 }
 
 TEST_CASE("merge names missing shards, missing frames and shards of another job") {
-  test::TempFolder dir("shards_missing");
+  test::TempDir dir("shards_missing");
   JobConfig c = test::tube_job(dir.path(), test::small_tube(9));
   run_shards(c, 3);
 
@@ -197,7 +185,7 @@ TEST_CASE("merge names missing shards, missing frames and shards of another job"
 }
 
 TEST_CASE("a sharded glTF job: merge assembles sequence.glb from the shards' positions") {
-  test::TempFolder dir("shards_gltf");
+  test::TempDir dir("shards_gltf");
   test::skinned_strip().save(dir / "strip.glb", true);
   JobConfig c;
   c.input.gltf = GltfInputOptions{dir / "strip.glb", "", "", 12.0};
@@ -217,17 +205,11 @@ TEST_CASE("a sharded glTF job: merge assembles sequence.glb from the shards' pos
   run(c);
   const MergeResult m = merge_shards(dir / "out");
   CHECK(m.written == std::vector<std::string>{"summary.csv", "report.json", "sequence.glb"});
-  const auto merged = test::folder_bytes(dir / "out", ".shard-");
-  const auto single = test::folder_bytes(dir / "single");
-  CHECK(test::names_of(merged) == test::names_of(single));
-  for (const auto& [name, bytes] : single) {
-    INFO(name);
-    CHECK(merged.at(name) == bytes);
-  }
+  test::compare_folders(dir / "single", dir / "out", ".shard-");
 }
 
 TEST_CASE("visual outputs (colored, checker, iterations.csv) resume and merge like the frames") {
-  test::TempFolder dir("shards_extras");
+  test::TempDir dir("shards_extras");
   JobConfig c = test::tube_job(dir.path(), test::small_tube(7));
   c.output.colored.enabled = true;
   c.output.checker.enabled = true;
@@ -237,7 +219,6 @@ TEST_CASE("visual outputs (colored, checker, iterations.csv) resume and merge li
   run(c);
   REQUIRE(fs::exists(dir / "out/iterations.csv"));
   REQUIRE(fs::exists(dir / "out/colored/after/frame_0004.ply"));
-  const auto single = test::folder_bytes(dir / "out");
   const auto record = read_frame_record(dir / "out/records/frame_0005.json");
   REQUIRE(record);
   CHECK(record->outputs.size() == 2 + 4);  // frame, table, colored and checker before/after
@@ -254,23 +235,13 @@ TEST_CASE("visual outputs (colored, checker, iterations.csv) resume and merge li
   CHECK(run(c, hooks).interrupted);
   c.resume = true;
   CHECK(run(c).resumed >= 3);
-  const auto resumed = test::folder_bytes(dir / "out");
-  CHECK(test::names_of(resumed) == test::names_of(single));
-  for (const auto& [name, bytes] : single) {
-    INFO(name);
-    CHECK(resumed.at(name) == bytes);
-  }
+  test::compare_folders(dir / "single", dir / "out");
   fs::remove_all(dir / "out");
 
   // As 3 shards, merged: iterations.csv is rebuilt from the records.
   c.resume = false;
   const MergeResult m = run_shards(c, 3);
   CHECK(m.written == std::vector<std::string>{"summary.csv", "report.json", "iterations.csv"});
-  const auto merged = test::folder_bytes(dir / "out", ".shard-");
-  CHECK(test::names_of(merged) == test::names_of(single));
-  for (const auto& [name, bytes] : single) {
-    INFO(name);
-    CHECK(merged.at(name) == bytes);
-  }
+  test::compare_folders(dir / "single", dir / "out", ".shard-");
   CHECK(fs::exists(dir / "out/iterations.shard-1-of-3.csv"));
 }

@@ -9,49 +9,19 @@
 #include "pipeline/report.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/error_of.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
+using test::error_of;
 namespace fs = std::filesystem;
 
-namespace {
-
-SyntheticConfig tube(int frames = 5, int segments = 12) {
-  SyntheticConfig c;
-  c.frames = frames;
-  c.segments = segments;
-  c.rings = 10;
-  return c;
-}
-
-// A folder of drifted frames under `dir`/in and a config reading it, writing to `dir`/out.
-JobConfig folder_job(const fs::path& dir, const SyntheticConfig& frames = tube()) {
-  write_synthetic_sequence(make_synthetic_sequence(frames), dir / "in", dir / "gt");
-  JobConfig c;
-  c.input.frames = dir / "in";
-  c.output.dir = dir / "out";
-  c.output.per_triangle_csv = true;
-  c.output.timings = false;
-  c.massage.iterations = 8;
-  c.threads = 2;
-  return c;
-}
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("a sequence job writes every documented output") {
-  test::TempFolder dir("job_outputs");
-  const JobConfig c = folder_job(dir.path());
+  test::TempDir dir("job_outputs");
+  const JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
   const SequencePlan plan = plan_sequence_job(c);
   CHECK(plan.selected == std::vector<int>{0, 1, 2, 3, 4});
   CHECK(plan.template_frame == 0);
@@ -103,8 +73,8 @@ TEST_CASE("a sequence job writes every documented output") {
 }
 
 TEST_CASE("the output bytes do not depend on the number of threads") {
-  test::TempFolder dir("job_threads");
-  JobConfig c = folder_job(dir.path(), tube(6));
+  test::TempDir dir("job_threads");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(6));
   c.threads = 1;
   c.output.dir = dir / "one";
   run_sequence_job(plan_sequence_job(c));
@@ -118,15 +88,15 @@ TEST_CASE("the output bytes do not depend on the number of threads") {
 }
 
 TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
-  test::TempFolder dir("job_template");
-  JobConfig c = folder_job(dir.path(), tube(3));
+  test::TempDir dir("job_template");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(3));
   c.templ.optimize = true;
   c.input.range.stop = 1;
   SequenceResult r = run_sequence_job(plan_sequence_job(c));
   REQUIRE(r.frames.size() == 1);
   CHECK(r.frames[0].status == FrameStatus::Optimized);
 
-  const SyntheticSequence seq = make_synthetic_sequence(tube(3));
+  const SyntheticSequence seq = make_synthetic_sequence(test::small_tube(3));
   write_obj(dir / "rest.obj", seq.rest);
   c.templ = TemplateConfig{};
   c.templ.mesh = dir / "rest.obj";
@@ -140,8 +110,8 @@ TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
 }
 
 TEST_CASE("frame ranges select the frames, the template is indexed in the full list") {
-  test::TempFolder dir("job_range");
-  JobConfig c = folder_job(dir.path(), tube(6));
+  test::TempDir dir("job_range");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(6));
   c.input.range = {1, 6, 2};
   const SequencePlan plan = plan_sequence_job(c);
   CHECK(plan.selected == std::vector<int>{1, 3, 5});
@@ -161,9 +131,9 @@ TEST_CASE("frame ranges select the frames, the template is indexed in the full l
 }
 
 TEST_CASE("mismatched frames are refused before anything is written") {
-  test::TempFolder dir("job_mismatch");
-  JobConfig c = folder_job(dir.path());
-  const SyntheticSequence other = make_synthetic_sequence(tube(5, 10));
+  test::TempDir dir("job_mismatch");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
+  const SyntheticSequence other = make_synthetic_sequence(test::small_tube(5, 10));
   write_file_atomic(dir / "in/frame_0003.obj",
                     format_synthetic_obj(other, synthetic_frame(other, 3).drifted, "other"));
   CHECK(error_of([&] { plan_sequence_job(c); }) ==
@@ -173,7 +143,7 @@ TEST_CASE("mismatched frames are refused before anything is written") {
   CHECK_FALSE(fs::exists(dir / "out"));
 
   // Same vertex count, one face changed.
-  const SyntheticSequence seq = make_synthetic_sequence(tube());
+  const SyntheticSequence seq = make_synthetic_sequence(test::small_tube(5));
   std::string text = format_synthetic_obj(seq, synthetic_frame(seq, 3).drifted, "frame 3");
   const size_t f = text.find("\nf ");
   const size_t end = text.find('\n', f + 1);
@@ -187,8 +157,8 @@ TEST_CASE("mismatched frames are refused before anything is written") {
 }
 
 TEST_CASE("an output folder that would overwrite an input is refused") {
-  test::TempFolder dir("job_overwrite");
-  JobConfig c = folder_job(dir.path());
+  test::TempDir dir("job_overwrite");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
   fs::rename(dir / "in", dir / "frames");
   c.input.frames = dir / "frames";
   c.output.dir = dir.path();
@@ -200,8 +170,8 @@ TEST_CASE("an output folder that would overwrite an input is refused") {
 }
 
 TEST_CASE("a cancelled run stops before the next frame and records it") {
-  test::TempFolder dir("job_cancel");
-  const JobConfig c = folder_job(dir.path());
+  test::TempDir dir("job_cancel");
+  const JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
   std::atomic<bool> cancel{true};
   RunHooks hooks;
   hooks.cancel = &cancel;
@@ -213,9 +183,9 @@ TEST_CASE("a cancelled run stops before the next frame and records it") {
 }
 
 TEST_CASE("a synthetic input is generated with its ground truth") {
-  test::TempFolder dir("job_synthetic");
+  test::TempDir dir("job_synthetic");
   JobConfig c;
-  c.input.synthetic = tube(4);
+  c.input.synthetic = test::small_tube(4);
   c.output.dir = dir / "out";
   c.threads = 2;
   const SequencePlan plan = plan_sequence_job(c);

@@ -7,25 +7,17 @@
 #include "mesh/errors.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/sequence_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;
 
 TEST_CASE("a write that fails mid-run throws its IoError after the pipeline drained",
           "[pipeline][errors]") {
-  test::TempFolder dir("job_write_fails");
-  SyntheticConfig frames;
-  frames.frames = 6;
-  frames.segments = 12;
-  frames.rings = 10;
-  write_synthetic_sequence(make_synthetic_sequence(frames), dir / "in", dir / "gt");
-  JobConfig c;
-  c.input.frames = dir / "in";
-  c.output.dir = dir / "out";
-  c.output.per_triangle_csv = true;
+  test::TempDir dir("job_write_fails");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(6));
   c.massage.iterations = 3;
-  c.threads = 2;
   c.frames_in_flight = 4;
   const SequencePlan plan = plan_sequence_job(c);
   // distortion/ is a file: the first per-triangle table cannot be written, after frames/ was.

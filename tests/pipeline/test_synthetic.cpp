@@ -6,7 +6,7 @@
 #include "io/obj.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/synthetic.hpp"
-#include "pipeline/temp_folder.hpp"
+#include "support/temp_dir.hpp"
 
 using namespace sm;
 
@@ -94,7 +94,7 @@ TEST_CASE("synthetic frames are written as OBJ files that read back exactly") {
   CHECK(obj.mesh.F == seq.F);
   CHECK(obj.texcoords.rows() == seq.uv.rows());
 
-  test::TempFolder dir("synthetic");
+  test::TempDir dir("synthetic");
   CHECK(write_synthetic_sequence(seq, dir / "in", dir / "gt") == 5);
   CHECK(read_obj(dir / "in" / "frame_0004.obj").mesh.V == synthetic_frame(seq, 4).drifted);
   CHECK(read_obj(dir / "gt" / "frame_0004.obj").mesh.V == synthetic_frame(seq, 4).clean);

@@ -1,7 +1,9 @@
 #pragma once
-// Small generated sequences for the sequence job's robustness tests (numerical failures, resume,
+/// Small generated sequences for the sequence job's robustness tests (numerical failures, resume,
 // shards): a folder of drifted tube frames and a config reading it, and helpers to compare
 // output folders byte for byte.
+#include <catch2/catch.hpp>
+
 #include <algorithm>
 #include <filesystem>
 #include <map>
@@ -14,10 +16,11 @@
 
 namespace sm::test {
 
-inline SyntheticConfig small_tube(int frames = 6) {
+// A drifting tube of `frames` frames, `segments` × 10 vertices.
+inline SyntheticConfig small_tube(int frames = 6, int segments = 12) {
   SyntheticConfig c;
   c.frames = frames;
-  c.segments = 12;
+  c.segments = segments;
   c.rings = 10;
   return c;
 }
@@ -55,6 +58,21 @@ inline std::vector<std::string> names_of(const std::map<std::string, std::string
   std::vector<std::string> names;
   for (const auto& [name, bytes] : files) names.push_back(name);
   return names;
+}
+
+// Checks that the folders `a` and `b` hold the same files with the same bytes (leaving out those
+// whose name matches `skip`); returns folder_bytes(a, skip).
+inline std::map<std::string, std::string> compare_folders(const std::filesystem::path& a,
+                                                          const std::filesystem::path& b,
+                                                          const std::string& skip = "") {
+  const auto left = folder_bytes(a, skip), right = folder_bytes(b, skip);
+  CHECK(names_of(left) == names_of(right));
+  for (const auto& [name, bytes] : left) {
+    INFO(name);
+    REQUIRE(right.count(name));
+    CHECK(right.at(name) == bytes);
+  }
+  return left;
 }
 
 // Rewrites the `v` lines of an OBJ file through `f(vertex index, x, y, z)`.

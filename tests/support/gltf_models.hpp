@@ -1,6 +1,7 @@
 #pragma once
 /// glTF assets built in code for the glTF tests (written with tinygltf), whose animated positions
-/// are known in closed form; a scratch folder; and the Khronos validator, when installed.
+/// are known in closed form, the shared Khronos sample models, and the Khronos validator, when
+/// installed.
 #include <tiny_gltf.h>
 
 #include <filesystem>
@@ -61,13 +62,6 @@ ModelBuilder node_animated_triangle();
 /// from 0 to 90 degrees over t in [0, 1]. The mesh node carries a translation that skinning must
 /// ignore. A material with a base colour texture (a 1×1 PNG) uses TEXCOORD_0.
 ModelBuilder skinned_strip(bool two_sets = false);
-
-/// A fresh scratch folder, removed when destroyed.
-struct ScratchDir {
-  std::filesystem::path path;
-  explicit ScratchDir(const std::string& name);
-  ~ScratchDir();
-};
 
 /// ../shared/data/gltf: the Khronos sample models of data/README.md §2.
 std::filesystem::path shared_gltf_dir();

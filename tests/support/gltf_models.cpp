@@ -1,4 +1,4 @@
-#include "io/test_gltf_models.hpp"
+#include "support/gltf_models.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -332,17 +332,6 @@ ModelBuilder skinned_strip(bool two_sets) {
   material.pbrMetallicRoughness.metallicFactor = 0.25;
   b.m.materials.push_back(material);
   return b;
-}
-
-ScratchDir::ScratchDir(const std::string& name) {
-  path = fs::temp_directory_path() / ("seqmassage-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(path);
-  fs::create_directories(path);
-}
-
-ScratchDir::~ScratchDir() {
-  std::error_code ec;
-  fs::remove_all(path, ec);
 }
 
 fs::path shared_gltf_dir() {

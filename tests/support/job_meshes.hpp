@@ -1,5 +1,5 @@
 #pragma once
-// Meshes generated in code for the single-mesh jobs' tests: remesh pairs whose remesh vertices
+/// Meshes generated in code for the single-mesh jobs' tests: remesh pairs whose remesh vertices
 // lie on the source surface, a box with irregular triangles on its flat faces, a template and a
 // tangentially distorted target with its connectivity.
 #include <algorithm>
