@@ -137,6 +137,9 @@ int main(int argc, char** argv) {
       options.iterations = std::stoi(next());
     else if (a == "--solver")
       options.solver = next() == "direct" ? SolverKind::Direct : SolverKind::Iterative;
+    else if (a == "--shape-target")
+      options.shape_target =
+          next() == "template" ? ShapeTargetKind::Template : ShapeTargetKind::Zero;
     else if (a == "--exact")
       options.closest_points = ClosestPointMode::Exact;
     else if (a == "--solver-tolerance")
@@ -158,7 +161,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_massage [--threads N] [--iterations K] [--solver iterative|direct]"
-                   " [--solver-tolerance T] [--exact] [--verbose] [--repeat R] [--sizes 4000,10000]"
+                   " [--solver-tolerance T] [--shape-target zero|template] [--exact] [--verbose] "
+                   "[--repeat R] [--sizes 4000,10000]"
                    " [--data DIR]\n");
       return 2;
     }

@@ -320,6 +320,8 @@ const Names<BoundaryWeights> kBoundary = {{"curve", BoundaryWeights::Curve},
                                           {"one_sided", BoundaryWeights::OneSided}};
 const Names<SampleKind> kSamples = {
     {"vertices", SampleKind::Vertices}, {"edges", SampleKind::Edges}, {"faces", SampleKind::Faces}};
+const Names<ShapeTargetKind> kShapeTargets = {{"zero", ShapeTargetKind::Zero},
+                                              {"template", ShapeTargetKind::Template}};
 const Names<SolverKind> kSolvers = {{"iterative", SolverKind::Iterative},
                                     {"direct", SolverKind::Direct}};
 const Names<ClosestPointMode> kClosest = {{"local", ClosestPointMode::Local},
@@ -332,6 +334,7 @@ const std::vector<std::string> kShapes = {"bending_tube"};
 void read_massage(const Section& s, MassageOptions& o) {
   read(s, "weights", o.weights, kWeights);
   read(s, "boundary_weights", o.boundary_weights, kBoundary);
+  read(s, "shape_target", o.shape_target, kShapeTargets);
   read(s, "iterations", o.iterations, 1);
   if (const json* v = s.get("mu")) {
     const Interval range{0.0, false, 1.0, true};
@@ -669,7 +672,8 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
 
   read_massage(
       Section(root.get("massage"), "massage",
-              {"weights", "boundary_weights", "iterations", "mu", "samples", "tolerance", "lawson",
+              {"weights", "boundary_weights", "shape_target", "iterations", "mu", "samples",
+               "tolerance", "lawson",
                "lawson_floor", "solver", "solver_tolerance", "solver_max_iterations",
                "closest_points", "walk_max_steps", "pin_boundary", "pinned"}),
       c.massage);
@@ -720,6 +724,7 @@ json to_json(const JobConfig& c) {
   const MassageOptions& m = c.massage;
   j["massage"] = {{"weights", name_of(m.weights, kWeights)},
                   {"boundary_weights", name_of(m.boundary_weights, kBoundary)},
+                  {"shape_target", name_of(m.shape_target, kShapeTargets)},
                   {"iterations", m.iterations},
                   {"mu", m.mu ? json(*m.mu) : json("auto")},
                   {"samples", name_of(m.samples, kSamples)},
@@ -829,6 +834,7 @@ const Names<MeshOutputFormat> kMeshFormats = {{"same", MeshOutputFormat::Same},
 // checks that both accept every key to_json writes).
 const std::vector<std::string> kMassageKeys = {"weights",
                                                "boundary_weights",
+                                               "shape_target",
                                                "iterations",
                                                "mu",
                                                "samples",
@@ -901,6 +907,9 @@ MassageOptions default_massage_options(JobKind job) {
     // and with Lawson's weights) and a few sharp edges get cut, which μ = 0.7 avoids. README,
     // "Reproducing the paper", has the numbers.
     o.weights = WeightKind::Uniform;
+    // T is M itself, so the rotated template target would keep M's shapes exactly: smoothing
+    // needs the paper's zero target.
+    o.shape_target = ShapeTargetKind::Zero;
     o.iterations = 60;
     o.samples = SampleKind::Edges;
     o.mu = 0.7;

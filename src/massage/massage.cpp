@@ -40,21 +40,26 @@ void check_options(const MassageOptions& o, int n) {
 }
 
 // Lawson's update (eq. 5) for α and β together, then normalisation by the joint mean and a floor
-// relative to it, so the weights neither underflow nor overflow and B stays definite.
+// relative to it, so the weights neither underflow nor overflow and B stays definite. Vertices of
+// M in no triangle (`isolated`, `num_isolated` of them) take no part: their α stays 0.
 void lawson_update(Eigen::VectorXd& alpha, const Eigen::VectorXd& d_alpha, Eigen::VectorXd& beta,
-                   const Eigen::VectorXd& d_beta, double floor) {
+                   const Eigen::VectorXd& d_beta, double floor,
+                   const std::vector<unsigned char>& isolated, int num_isolated) {
   alpha = alpha.cwiseProduct(d_alpha);
   beta = beta.cwiseProduct(d_beta);
   const double total = alpha.sum() + beta.sum();
-  const double count = static_cast<double>(alpha.size() + beta.size());
+  const double count = static_cast<double>(alpha.size() - num_isolated + beta.size());
   if (!(total > 0.0) || !std::isfinite(total)) {
     alpha.setOnes();
     beta.setOnes();
-    return;
+  } else {
+    const double mean = total / count;
+    alpha = (alpha / mean).cwiseMax(floor);
+    beta = (beta / mean).cwiseMax(floor);
   }
-  const double mean = total / count;
-  alpha = (alpha / mean).cwiseMax(floor);
-  beta = (beta / mean).cwiseMax(floor);
+  if (num_isolated > 0)
+    for (Eigen::Index i = 0; i < alpha.size(); ++i)
+      if (isolated[i]) alpha[i] = 0.0;
 }
 
 // Each undirected edge of F once, sorted (as mean_edge_length counts them).
@@ -83,11 +88,13 @@ struct Massager::Impl {
   std::shared_ptr<const Topology> topology;
   ShapeWeights weights;
   SystemPattern pattern;
+  ShapeTarget target;                     // with ShapeTargetKind::Template
   TriangleBvh bvh;                        // over the template; copied and refitted per run
   std::vector<std::array<int, 2>> edges;  // for the mean edge length of M
   std::vector<unsigned char> pinned;      // n flags
   int num_pinned = 0;
   std::vector<unsigned char> isolated;    // n flags: vertices in no triangle (also pinned)
+  int num_isolated = 0;
 
   double mean_edge_length(const Positions& V) const {
     if (edges.empty()) return 0.0;
@@ -126,6 +133,8 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   s.topology = std::make_shared<const Topology>(build_topology(templ));
   s.weights = compute_weights(templ, s.options.weights, s.options.boundary_weights);
   s.pattern = SystemPattern(shape_matrix(s.weights), templ.F);
+  if (s.options.shape_target == ShapeTargetKind::Template)
+    s.target = ShapeTarget(templ, s.weights.lambda, *s.topology);
   s.bvh = TriangleBvh(templ);
   s.edges = unique_edges(templ.F);
   s.pinned.assign(n, 0);
@@ -137,7 +146,10 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   // and takes no part in the distance energy (nor in Lawson's normalization).
   s.isolated.assign(n, 0);
   for (int v = 0; v < n; ++v)
-    if (s.topology->vertex_triangles.size(v) == 0) s.isolated[v] = s.pinned[v] = 1;
+    if (s.topology->vertex_triangles.size(v) == 0) {
+      s.isolated[v] = s.pinned[v] = 1;
+      ++s.num_isolated;
+    }
   for (unsigned char p : s.pinned) s.num_pinned += p;
 }
 
@@ -198,13 +210,19 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
   update_correspondences(on_n, M.V, true, o.walk_max_steps, v_hat);
   update_correspondences(on_m, W, true, o.walk_max_steps, w_hat, refit_m);
   Eigen::VectorXd alpha = Eigen::VectorXd::Ones(n), beta = Eigen::VectorXd::Ones(W.rows());
+  for (int i = 0; i < n; ++i)
+    if (s.isolated[i]) alpha[i] = 0.0;  // no part in the distance energy (and pinned)
   Eigen::VectorXd d_alpha(n), d_beta(W.rows());
 
   const double move_limit = o.tolerance * s.mean_edge_length(M.V);
   SparseMatrixR K = s.pattern.shape_matrix();  // values overwritten every iteration
   const std::vector<double> A_values(K.valuePtr(), K.valuePtr() + K.nonZeros());
   std::vector<double> B_values;
-  Positions c, rhs, X, AV, V_prev;
+  Positions c, rhs, X, AV, V_prev, delta;
+  const bool use_target = o.shape_target == ShapeTargetKind::Template;
+  if (use_target)  // once per run, from the start (see shape_target.hpp)
+    result.target_fallback_vertices =
+        s.target.evaluate(start, s.F, s.weights.lambda, *s.topology, delta);
   Ilu0 ilu;
   BicgstabWorkspace workspace;
   DirectSolver direct;
@@ -223,6 +241,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     for (size_t p = 0; p < B_values.size(); ++p)
       kv[p] = mu * A_values[p] + (1.0 - mu) * B_values[p];
     rhs = (1.0 - mu) * c;
+    if (use_target) rhs += mu * delta;
     if (s.num_pinned > 0) {
       const int* outer = K.outerIndexPtr();
       for (int i = 0; i < n; ++i) {
@@ -286,6 +305,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     for (int i = 0; i < n; ++i) d_alpha[i] = s.isolated[i] ? 0.0 : std::sqrt(v_hat[i].dist2);
     for (int j = 0; j < d_beta.size(); ++j) d_beta[j] = std::sqrt(w_hat[j].dist2);
     multiply(s.pattern.shape_matrix(), M.V, AV);
+    if (use_target) AV -= delta;
     it.energy = mu * AV.squaredNorm() +
                 (1.0 - mu) * (alpha.dot(d_alpha.cwiseAbs2()) + beta.dot(d_beta.cwiseAbs2()));
     it.max_dist_m_to_n = d_alpha.maxCoeff();
@@ -294,7 +314,8 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     it.rms_dist_n_to_m = d_beta.size() ? std::sqrt(d_beta.squaredNorm() / d_beta.size()) : 0.0;
     result.iterations.push_back(it);
 
-    if (o.lawson) lawson_update(alpha, d_alpha, beta, d_beta, o.lawson_floor);
+    if (o.lawson)
+      lawson_update(alpha, d_alpha, beta, d_beta, o.lawson_floor, s.isolated, s.num_isolated);
     if (k < o.iterations && it.max_move <= move_limit) {
       result.stopped_early = true;
       break;

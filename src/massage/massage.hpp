@@ -4,12 +4,13 @@
 /// iterating the combined solve (eq. 7) with Lawson's reweighting (eq. 5).
 ///
 /// Per iteration k, with M's positions v (n×3):
-///   K = μA + (1−μ)B,  K v = (1−μ)c                                          (eq. 7)
-///   A = I − Λ (n×n, not symmetric, fixed)                                    (eq. 6)
+///   K = μA + (1−μ)B,  K v = μδ + (1−μ)c                                     (eq. 7)
+///   A = I − Λ (n×n, not symmetric, fixed), shape target A v = δ               (eq. 6)
 ///   B = Σ_i α_i e_i e_iᵀ + Σ_j β_j b_j b_jᵀ,  c = Σ_i α_i v̂_i + Σ_j β_j b_j w_j  (eq. 4)
 /// where v̂_i is the closest point of N to v_i, and b_j (n-vector, three non-zeros) holds the
-/// barycentric coordinates of the closest point of M to the sample w_j. The sparsity of K is A's
-/// (with its diagonal) for every iteration, frame and reference: it is analysed once.
+/// barycentric coordinates of the closest point of M to the sample w_j; δ = 0 as in the paper, or
+/// T's Laplacian turned into the start frame (shape_target.hpp), fixed for the run. The sparsity of
+/// K is A's (with its diagonal) for every iteration, frame and reference: it is analysed once.
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include "geometry/weights.hpp"
 #include "massage/reference.hpp"
+#include "massage/shape_target.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {
@@ -38,6 +40,10 @@ struct MassageOptions {
   /// "boundary_weights": "curve" (1-D weights along boundary loops) | "one_sided" (Floater's
   /// formula on the triangles present, which pulls open boundaries inwards; see weights.hpp)
   BoundaryWeights boundary_weights = BoundaryWeights::Curve;
+  /// "shape_target": the right-hand side δ of the shape system A v = δ: "template" (T's own
+  /// Laplacian turned ring by ring into the start, so frames with T's shapes are fixed points; see
+  /// shape_target.hpp) or "zero" (the paper's eq. 6; the smooth job's default).
+  ShapeTargetKind shape_target = ShapeTargetKind::Template;
   int iterations = 15;                         ///< "iterations": outer iterations, >= 1
   std::optional<double> mu;                    ///< "mu": "auto" (empty) or a value in [0, 1)
   SampleKind samples = SampleKind::Vertices;   ///< "samples": samples w_j of N
@@ -58,7 +64,7 @@ struct MassageOptions {
 struct IterationStats {
   int iteration = 0;
   double mu = 0.0;
-  double energy = 0.0;           ///< μ‖Av‖² + (1−μ)·(weighted distance energy, eq. 4), after solve
+  double energy = 0.0;           ///< μ‖Av − δ‖² + (1−μ)·(weighted distances, eq. 4), after solve
   double max_dist_m_to_n = 0.0;  ///< max_i |v_i − v̂_i| (after the solve)
   double rms_dist_m_to_n = 0.0;
   double max_dist_n_to_m = 0.0;  ///< max_j |w_j − ŵ_j|
@@ -79,6 +85,9 @@ struct MassageResult {
   std::string failure;                ///< why the run failed (solver breakdown, NaN, ...)
   bool stopped_early = false;         ///< the movement tolerance was met before the last iteration
   int folded_triangles = 0;           ///< triangles whose normal opposes N's at their centroid
+  /// With shape_target "template": vertices whose normal is undefined in T or in the start (no
+  /// area around them), which keep the paper's target δ_i = 0.
+  int target_fallback_vertices = 0;
   double seconds = 0.0;
 };
 
