@@ -13,8 +13,14 @@
 //     style, "input": {"synthetic": ...}) with 50 and with 1000 frames, 2 threads: max RSS of
 //     each; it must not grow with the number of frames.
 //
+//  4. With --tables (or --spacing-table, --iterations-table): the option tables of
+//     bench_sequence_tables.cpp: the distances' cost and accuracy per sampling on the crane, and
+//     quality against massage.iterations (--iterations LIST, default 5,8,10,12,15) on the crane
+//     and the samba.
+//
 //   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
-//                  [--no-job] [--keep DIR] [--seqmassage PATH]
+//                  [--no-job] [--keep DIR] [--seqmassage PATH] [--tables] [--spacing-table]
+//                  [--iterations-table] [--iterations LIST]
 //
 // --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
 #include <sys/resource.h>
@@ -43,6 +49,9 @@
 using namespace sm;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+void spacing_table(const fs::path& dir);
+void iterations_table(const fs::path& dir, const std::vector<int>& counts);
 
 namespace {
 
@@ -199,7 +208,8 @@ int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
   fs::path keep;
   int repeat = 3, short_frames = 50, long_frames = 1000;
-  bool memory = true, stage_timings = true, job = true;
+  bool memory = true, stage_timings = true, job = true, spacing = false, iterations = false;
+  std::vector<int> iteration_counts = {5, 8, 10, 12, 15};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -223,7 +233,21 @@ int main(int argc, char** argv) {
       stage_timings = false;
     else if (a == "--no-job")
       job = false;
-    else if (a == "--keep")
+    else if (a == "--tables")
+      spacing = iterations = true;
+    else if (a == "--spacing-table")
+      spacing = true;
+    else if (a == "--iterations-table")
+      iterations = true;
+    else if (a == "--iterations") {
+      iteration_counts.clear();
+      const std::string list = next();
+      for (size_t at = 0; at < list.size();) {
+        const size_t comma = std::min(list.find(',', at), list.size());
+        iteration_counts.push_back(std::stoi(list.substr(at, comma - at)));
+        at = comma + 1;
+      }
+    } else if (a == "--keep")
       keep = next();
     else if (a == "--seqmassage") {
       static std::string bin;
@@ -232,7 +256,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
-                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]\n");
+                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]"
+                   " [--tables] [--spacing-table] [--iterations-table] [--iterations LIST]\n");
       return 2;
     }
   }
@@ -289,6 +314,21 @@ int main(int argc, char** argv) {
       }
       std::printf("  %5d frames: max RSS %6.1f MB, %7.2f s wall (%7.2f s CPU), %6.1f frames/s\n",
                   frames, r.max_rss_kb / 1024.0, r.seconds, r.cpu_seconds, frames / r.seconds);
+    }
+  }
+  if (spacing) {
+    if (fs::exists(crane / "frame_0000.obj"))
+      spacing_table(crane);
+    else
+      std::printf("spacing table: skipped, %s not found\n", crane.string().c_str());
+  }
+  if (iterations) {
+    for (const char* name : {"vlasic_crane", "vlasic_samba"}) {
+      const fs::path dir = data / "sequences" / name;
+      if (fs::exists(dir / "frame_0000.obj"))
+        iterations_table(dir, iteration_counts);
+      else
+        std::printf("iterations table: %s skipped, not found\n", dir.string().c_str());
     }
   }
   if (keep.empty()) fs::remove_all(scratch);
