@@ -15,12 +15,13 @@
 //
 //  4. With --tables (or --spacing-table, --iterations-table): the option tables of
 //     bench_sequence_tables.cpp: the distances' cost and accuracy per sampling on the crane, and
-//     quality against massage.iterations (--iterations LIST, default 5,8,10,12,15) on the crane
-//     and the samba.
+//     quality against massage.iterations (--iterations LIST, default 5,8,10,12,15) and, at the
+//     largest count, against massage.tolerance (--tolerances LIST, default 1e-3,3e-3) on the
+//     crane and the samba.
 //
 //   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
 //                  [--no-job] [--keep DIR] [--seqmassage PATH] [--tables] [--spacing-table]
-//                  [--iterations-table] [--iterations LIST]
+//                  [--iterations-table] [--iterations LIST] [--tolerances LIST]
 //
 // --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
 #include <sys/resource.h>
@@ -30,6 +31,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -51,9 +53,20 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 void spacing_table(const fs::path& dir);
-void iterations_table(const fs::path& dir, const std::vector<int>& counts);
+void iterations_table(const fs::path& dir, const std::vector<int>& counts,
+                      const std::vector<double>& tolerances);
 
 namespace {
+
+std::vector<std::string> split_list(const std::string& list) {
+  std::vector<std::string> items;
+  for (size_t at = 0; at < list.size();) {
+    const size_t comma = std::min(list.find(',', at), list.size());
+    items.push_back(list.substr(at, comma - at));
+    at = comma + 1;
+  }
+  return items;
+}
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
@@ -210,6 +223,7 @@ int main(int argc, char** argv) {
   int repeat = 3, short_frames = 50, long_frames = 1000;
   bool memory = true, stage_timings = true, job = true, spacing = false, iterations = false;
   std::vector<int> iteration_counts = {5, 8, 10, 12, 15};
+  std::vector<double> tolerances = {1e-3, 3e-3};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -241,12 +255,11 @@ int main(int argc, char** argv) {
       iterations = true;
     else if (a == "--iterations") {
       iteration_counts.clear();
-      const std::string list = next();
-      for (size_t at = 0; at < list.size();) {
-        const size_t comma = std::min(list.find(',', at), list.size());
-        iteration_counts.push_back(std::stoi(list.substr(at, comma - at)));
-        at = comma + 1;
-      }
+      for (const std::string& item : split_list(next()))
+        iteration_counts.push_back(std::stoi(item));
+    } else if (a == "--tolerances") {
+      tolerances.clear();
+      for (const std::string& item : split_list(next())) tolerances.push_back(std::stod(item));
     } else if (a == "--keep")
       keep = next();
     else if (a == "--seqmassage") {
@@ -257,7 +270,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
                    " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]"
-                   " [--tables] [--spacing-table] [--iterations-table] [--iterations LIST]\n");
+                   " [--tables] [--spacing-table] [--iterations-table] [--iterations LIST]"
+                   " [--tolerances LIST]\n");
       return 2;
     }
   }
@@ -326,7 +340,7 @@ int main(int argc, char** argv) {
     for (const char* name : {"vlasic_crane", "vlasic_samba"}) {
       const fs::path dir = data / "sequences" / name;
       if (fs::exists(dir / "frame_0000.obj"))
-        iterations_table(dir, iteration_counts);
+        iterations_table(dir, iteration_counts, tolerances);
       else
         std::printf("iterations table: %s skipped, not found\n", dir.string().c_str());
     }

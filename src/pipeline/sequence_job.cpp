@@ -227,11 +227,12 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       const TriMesh output{V, F};
       const Topology& topology = plan.massager->topology();
       s.out_to_in =
-          one_sided_distance(output, reference->bvh(), {}, &reference->planes(), &topology);
+          one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(), &topology);
       TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
       output_bvh.refit(V);
       const TrianglePlanes output_planes(V, F, &topology);
-      s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
+      s.in_to_out =
+          one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology);
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
@@ -371,6 +372,9 @@ std::string describe_plan(const SequencePlan& plan) {
   s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
     << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>() << ", solver "
     << m["solver"].get<std::string>() << "\n";
+  s << "distances (summary.csv): samples every " << format_number(c.measures.spacing)
+    << " mean edge lengths, at the vertices" << (c.measures.sample_edges ? ", along the edges" : "")
+    << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
   s << plan.sink->describe(plan.run_frames);
