@@ -232,9 +232,10 @@ void iterations_table(const fs::path& dir, const std::vector<int>& counts,
       folds += count_folded_triangles(seq.templ.F, massager.topology(), input.V, result.V).folded;
     }
     const double n = double(inputs.size());
-    std::printf("  %5d %9.1f | %8.5f %8.5f %8.3f %8.3f | %10.4e %10.4e %10.4e %10.4e | %6d %6d\n",
-                iterations, 1e3 * seconds / n, mean / n, p95 / n, max_mean / n, max_max, oi_max,
-                oi_rms / n, io_max, io_rms / n, folds, early);
+    std::printf(
+        "  %5d %8.1e %9.1f | %8.5f %8.5f %8.3f %8.3f | %10.4e %10.4e %10.4e %10.4e | %6d %6d\n",
+        iterations, tolerance, 1e3 * seconds / n, mean / n, p95 / n, max_mean / n, max_max, oi_max,
+        oi_rms / n, io_max, io_rms / n, folds, early);
   }
   std::printf(
       "  (mean, p95: means over the frames; max:mean / max:max: mean and largest per-frame "

@@ -179,6 +179,11 @@ std::string check_output(const SequencePlan& plan, const TriMesh& input, const P
   return "";
 }
 
+void write_record(const SequencePlan& plan, const Work& w) {
+  write_file_atomic(record_file(plan.config.output.dir, plan.source->name(w.index)),
+                    to_json(w.record).dump(1) + "\n");
+}
+
 void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   const auto t0 = Clock::now();
   const JobConfig& c = plan.config;
@@ -268,6 +273,33 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   }
   r.summary = s;
   r.iterations_csv = w.extras.iterations_csv;
+}
+
+// A frame's files, written in the parallel stage: no other frame writes them, so the frames'
+// writes (and their fsyncs) overlap the others' work instead of queueing in the serial stage. The
+// order within the frame is kept: the old record is removed first, then the outputs are written
+// (or, for a frame without output, removed), then the record, which comes back last. With extra
+// outputs, which the serial stage writes in frame order (the checker texture comes with the first
+// checker frame), the record waits for them there (write_record). Frees the encoded bytes.
+void write_frame_files(const SequencePlan& plan, Work& w) {
+  const JobConfig& c = plan.config;
+  const fs::path& out = c.output.dir;
+  std::error_code ec;
+  fs::remove(record_file(out, plan.source->name(w.index)), ec);
+  const fs::path frame = out / plan.sink->output_file(w.index);
+  const fs::path csv = out / distortion_file(plan, w.index);
+  if (w.has_output) {
+    write_file_atomic(frame, w.out);
+    if (c.output.per_triangle_csv) write_file_atomic(csv, w.csv);
+  } else {
+    fs::remove(frame, ec);
+    fs::remove(csv, ec);
+    for (const auto& [file, bytes] : w.extras.files) fs::remove(out / file, ec);
+    w.extras.files.clear();
+  }
+  std::string().swap(w.out);
+  std::string().swap(w.csv);
+  if (!plan.extras->any()) write_record(plan, w);
 }
 
 }  // namespace
@@ -467,6 +499,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                   }
                   w->record.input_hash = input_hash;
                   process_frame(plan, *extras, *w);
+                  if (!failed) write_frame_files(plan, *w);  // else dropped, like the others
                   return w;
                 })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
@@ -476,25 +509,15 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                     extras->keep(w->record.iterations_csv);
                     ++result.resumed;
                   } else {
+                    // The frame's own files are written (write_frame_files); its extra outputs
+                    // (or, without output, its iterations.csv rows) go here, in frame order, and
+                    // then its record if they held it back.
                     if (c.resume) ++result.redone[w->redo];
-                    // The record goes first and comes back last: a record on disk always
-                    // describes complete outputs of its config.
-                    const fs::path record = record_file(out, plan.source->name(w->index));
-                    std::error_code ec;
-                    fs::remove(record, ec);
-                    const fs::path csv = out / distortion_file(plan, w->index);
-                    if (w->has_output) {
-                      writer->write(w->index, w->out);
-                      if (c.output.per_triangle_csv) write_file_atomic(csv, w->csv);
+                    if (w->has_output) writer->keep(w->index);
+                    if (plan.extras->any()) {
                       extras->write(w->extras);
-                    } else {
-                      writer->skip(w->index);
-                      fs::remove(csv, ec);
-                      for (const auto& [file, bytes] : w->extras.files) fs::remove(out / file, ec);
-                      w->extras.files.clear();
-                      extras->write(w->extras);  // its iterations.csv rows
+                      write_record(plan, *w);
                     }
-                    write_file_atomic(record, to_json(w->record).dump(1) + "\n");
                   }
                   const FrameSummary& s = w->summary;
                   append_frame_warnings(s, c.output.on_failure, result.warnings);
