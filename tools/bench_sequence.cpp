@@ -4,7 +4,8 @@
 //     goes through the steps of the job's per-frame work (sequence_job.cpp, process_frame) one
 //     after the other, each timed in CPU time of the thread: read (file and OBJ parse), optimize
 //     (Reference and Massager::run), measure (shear of eq. 8 before and after, Metro-style
-//     distances both ways), write (corrected OBJ and per-triangle CSV, formatted and written
+//     distances both ways, sampled as the job's default "measures"), write (corrected OBJ and
+//     per-triangle CSV formatted, hashed for the frame record and written
 //     atomically).
 //  2. The whole job: `seqmassage CONFIG --quiet` on the crane, with 1 and 2 threads, as a child
 //     process: wall time (planning, reading, writing included), frames/s and peak memory (max
@@ -43,8 +44,10 @@
 #include "geometry/distance.hpp"
 #include "geometry/shear.hpp"
 #include "io/atomic_file.hpp"
+#include "io/config.hpp"
 #include "io/frame_folder.hpp"
 #include "io/obj.hpp"
+#include "io/sha256.hpp"
 #include "massage/massage.hpp"
 #include "pipeline/report.hpp"
 
@@ -152,6 +155,7 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const double setup = thread_seconds() - t_setup;
   double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
   int iterations = 0, count = 0;
+  size_t hashes = 0;
   fs::create_directories(scratch / "frames");
   fs::create_directories(scratch / "distortion");
   for (size_t k = 1; k < frames.size(); ++k) {
@@ -174,13 +178,14 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const double t_shear = (thread_seconds() - t0);
     const TriMesh output{result.V, templ.F};
     const Topology& topology = massager.topology();
+    const DistanceOptions sampling = default_sequence_measures();  // the job's "measures"
     const DistanceStats out_to_in =
-        one_sided_distance(output, reference.bvh(), {}, &reference.planes(), &topology);
+        one_sided_distance(output, reference.bvh(), sampling, &reference.planes(), &topology);
     TriangleBvh output_bvh = reference.bvh();
     output_bvh.refit(result.V);
     const TrianglePlanes output_planes(result.V, templ.F, &topology);
     const DistanceStats in_to_out =
-        one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
+        one_sided_distance(file.mesh, output_bvh, sampling, &output_planes, &topology);
     measure += (thread_seconds() - t0);
     shear += t_shear;
     distance += (thread_seconds() - t0) - t_shear;
@@ -191,6 +196,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     write_file_atomic(scratch / "frames" / frames[k].filename(), obj);
     write_file_atomic(
         scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"), csv);
+    // The frame record's hashes: the input as read, the two outputs.
+    hashes += sha256_hex(bytes).size() + sha256_hex(obj).size() + sha256_hex(csv).size();
     write += (thread_seconds() - t0);
     ++count;
     std::printf(
@@ -206,13 +213,15 @@ void stages(const fs::path& crane, const fs::path& scratch) {
       "  read     %7.1f ms/frame  (%4.1f%%)\n"
       "  optimize %7.1f ms/frame  (%4.1f%%)  %.1f ms per iteration, %.1f iterations/frame\n"
       "  measure  %7.1f ms/frame  (%4.1f%%)  shear %.1f ms, distances %.1f ms\n"
-      "  write    %7.1f ms/frame  (%4.1f%%)\n"
+      "  write    %7.1f ms/frame  (%4.1f%%)  formatted, SHA-256 for the record, written "
+      "atomically\n"
       "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
       count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
       1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
       double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
       1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * total / count,
       count / total);
+  if (hashes == 0) std::printf("(no frame)\n");
 }
 
 }  // namespace
