@@ -9,7 +9,10 @@
 //     atomically).
 //  2. The whole job: `seqmassage CONFIG --quiet` on the crane, with 1 and 2 threads, as a child
 //     process: wall time (planning, reading, writing included), frames/s and peak memory (max
-//     RSS), best of --repeat runs.
+//     RSS), best of --repeat runs; "cores busy" (CPU / wall) and "frames in progress at once"
+//     (the sum of summary.csv's per-frame seconds / wall) tell a pipeline that does not overlap
+//     its frames (the second near 1 with 2 threads) from a machine whose cores are taken by
+//     other processes (the second near 2, the first near 1).
 //  3. Memory against sequence length: the generated bending-tube sequence (configs/demo.json
 //     style, "input": {"synthetic": ...}) with 50 and with 1000 frames, 2 threads: max RSS of
 //     each; it must not grow with the number of frames.
@@ -80,6 +83,9 @@ struct ChildRun {
   double seconds = 0.0;      ///< wall
   double cpu_seconds = 0.0;  ///< user + system: the work done, less sensitive to other load
   long max_rss_kb = 0;
+  /// Sum of the frames' processing times (summary.csv "seconds"): divided by the wall time, the
+  /// frames processed at once on average (what the pipeline overlaps, whatever the cores give).
+  double frame_seconds = 0.0;
 };
 
 // Runs `seqmassage config --quiet [--threads N]` and measures it from here: wall time and the
@@ -113,11 +119,32 @@ ChildRun run_job(const fs::path& config, int threads, const fs::path& log) {
   return run;
 }
 
-ChildRun best_of(const fs::path& config, int threads, const fs::path& log, int repeat) {
+// The sum of summary.csv's per-frame seconds (each frame's processing, wall), 0 if unreadable.
+double frame_seconds(const fs::path& summary) {
+  std::ifstream in(summary);
+  std::string line;
+  if (!std::getline(in, line)) return 0.0;
+  int column = 0, seconds_column = -1;
+  for (const std::string& name : split_list(line)) {
+    if (name == "seconds") seconds_column = column;
+    ++column;
+  }
+  double sum = 0.0;
+  while (seconds_column >= 0 && std::getline(in, line)) {
+    const std::vector<std::string> cells = split_list(line);
+    if (int(cells.size()) > seconds_column && !cells[size_t(seconds_column)].empty())
+      sum += std::stod(cells[size_t(seconds_column)]);
+  }
+  return sum;
+}
+
+ChildRun best_of(const fs::path& config, int threads, const fs::path& log, int repeat,
+                 const fs::path& summary = {}) {
   ChildRun best;
   for (int k = 0; k < repeat; ++k) {
-    const ChildRun r = run_job(config, threads, log);
+    ChildRun r = run_job(config, threads, log);
     if (!r.ok) return r;
+    if (!summary.empty()) r.frame_seconds = frame_seconds(summary);
     if (k == 0 || r.seconds < best.seconds) best = r;
   }
   return best;
@@ -310,14 +337,18 @@ int main(int argc, char** argv) {
         "best of %d):\n",
         frames, repeat);
     for (int threads : {1, 2}) {
-      const ChildRun r = best_of(config, threads, scratch / "crane.log", repeat);
+      const ChildRun r = best_of(config, threads, scratch / "crane.log", repeat,
+                                 scratch / "crane" / "summary.csv");
       if (!r.ok) {
         std::printf("  %d thread(s): FAILED, see %s\n", threads,
                     (scratch / "crane.log").string().c_str());
         continue;
       }
-      std::printf("  %d thread(s): %7.3f s wall (%6.3f s CPU), %6.1f frames/s, max RSS %6.1f MB\n",
-                  threads, r.seconds, r.cpu_seconds, frames / r.seconds, r.max_rss_kb / 1024.0);
+      std::printf(
+          "  %d thread(s): %7.3f s wall (%6.3f s CPU, %.2f cores busy), %6.1f frames/s, max RSS "
+          "%6.1f MB; frames in progress at once %.2f\n",
+          threads, r.seconds, r.cpu_seconds, r.cpu_seconds / r.seconds, frames / r.seconds,
+          r.max_rss_kb / 1024.0, r.frame_seconds / r.seconds);
     }
   }
 
