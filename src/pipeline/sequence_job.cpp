@@ -442,8 +442,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const size_t total = plan.run_frames.size();
   size_t next = 0;
   // The first exception of a stage stops the input and is rethrown once the frames in flight have
-  // drained, unwritten: thrown through parallel_pipeline, it would leak them (oneTBB does not
-  // destroy the tokens of a cancelled pipeline).
+  // drained (those that finish after it are not written; one finishing at the same moment may
+  // have written its complete files): thrown through parallel_pipeline, it would leak them (oneTBB
+  // does not destroy the tokens of a cancelled pipeline).
   std::exception_ptr error;
   std::mutex error_mutex;
   std::atomic<bool> failed{false};
