@@ -131,8 +131,6 @@ struct JobConfig {
   TemplateConfig templ;             ///< "template"
   OutputConfig output;              ///< "output" (required)
   MassageOptions massage;           ///< "massage": every key of MassageOptions
-  /// "measures": the sampling of summary.csv's distances
-  DistanceOptions measures = default_sequence_measures();
   int threads = 0;                  ///< "threads": worker threads, 0 = one per core
   int frames_in_flight = 0;         ///< "frames_in_flight": frames held at once, 0 = 2 × threads
   FrameChecks checks;               ///< "checks"
@@ -140,6 +138,8 @@ struct JobConfig {
   /// "resume": skip the frames whose record (records/<frame>.json) shows that their outputs are
   /// complete and were made from the same config, template and input.
   bool resume = false;
+  /// "measures": the sampling of summary.csv's distances
+  DistanceOptions measures = default_sequence_measures();
 };
 
 /// Reads and checks a config file; relative paths resolve against the file's folder. Throws
