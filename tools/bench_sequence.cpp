@@ -4,17 +4,28 @@
 //     goes through the steps of the job's per-frame work (sequence_job.cpp, process_frame) one
 //     after the other, each timed in CPU time of the thread: read (file and OBJ parse), optimize
 //     (Reference and Massager::run), measure (shear of eq. 8 before and after, Metro-style
-//     distances both ways), write (corrected OBJ and per-triangle CSV, formatted and written
+//     distances both ways, sampled as the job's default "measures"), write (corrected OBJ and
+//     per-triangle CSV formatted, hashed for the frame record and written
 //     atomically).
 //  2. The whole job: `seqmassage CONFIG --quiet` on the crane, with 1 and 2 threads, as a child
 //     process: wall time (planning, reading, writing included), frames/s and peak memory (max
-//     RSS), best of --repeat runs.
+//     RSS), best of --repeat runs; "cores busy" (CPU / wall) and "frames in progress at once"
+//     (the sum of summary.csv's per-frame seconds / wall) tell a pipeline that does not overlap
+//     its frames (the second near 1 with 2 threads) from a machine whose cores are taken by
+//     other processes (the second near 2, the first near 1).
 //  3. Memory against sequence length: the generated bending-tube sequence (configs/demo.json
 //     style, "input": {"synthetic": ...}) with 50 and with 1000 frames, 2 threads: max RSS of
 //     each; it must not grow with the number of frames.
 //
+//  4. With --tables (or --spacing-table, --iterations-table): the option tables of
+//     bench_sequence_tables.cpp: the distances' cost and accuracy per sampling on the crane, and
+//     quality against massage.iterations (--iterations LIST, default 5,8,10,12,15) and, at the
+//     largest count, against massage.tolerance (--tolerances LIST, default 1e-3,3e-3) on the
+//     crane and the samba.
+//
 //   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
-//                  [--no-job] [--keep DIR] [--seqmassage PATH]
+//                  [--no-job] [--keep DIR] [--seqmassage PATH] [--tables] [--spacing-table]
+//                  [--iterations-table] [--iterations LIST] [--tolerances LIST]
 //
 // --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
 #include <sys/resource.h>
@@ -24,6 +35,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -34,8 +46,10 @@
 #include "geometry/distance.hpp"
 #include "geometry/shear.hpp"
 #include "io/atomic_file.hpp"
+#include "io/config.hpp"
 #include "io/frame_folder.hpp"
 #include "io/obj.hpp"
+#include "io/sha256.hpp"
 #include "massage/massage.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/report.hpp"
@@ -43,13 +57,30 @@
 using namespace sm;
 namespace fs = std::filesystem;
 
+void spacing_table(const fs::path& dir);
+void iterations_table(const fs::path& dir, const std::vector<int>& counts,
+                      const std::vector<double>& tolerances);
+
 namespace {
+
+std::vector<std::string> split_list(const std::string& list) {
+  std::vector<std::string> items;
+  for (size_t at = 0; at < list.size();) {
+    const size_t comma = std::min(list.find(',', at), list.size());
+    items.push_back(list.substr(at, comma - at));
+    at = comma + 1;
+  }
+  return items;
+}
 
 struct ChildRun {
   bool ok = false;
   double seconds = 0.0;      ///< wall
   double cpu_seconds = 0.0;  ///< user + system: the work done, less sensitive to other load
   long max_rss_kb = 0;
+  /// Sum of the frames' processing times (summary.csv "seconds"): divided by the wall time, the
+  /// frames processed at once on average (what the pipeline overlaps, whatever the cores give).
+  double frame_seconds = 0.0;
 };
 
 // Runs `seqmassage config --quiet [--threads N]` and measures it from here: wall time and the
@@ -83,11 +114,32 @@ ChildRun run_job(const fs::path& config, int threads, const fs::path& log) {
   return run;
 }
 
-ChildRun best_of(const fs::path& config, int threads, const fs::path& log, int repeat) {
+// The sum of summary.csv's per-frame seconds (each frame's processing, wall), 0 if unreadable.
+double frame_seconds(const fs::path& summary) {
+  std::ifstream in(summary);
+  std::string line;
+  if (!std::getline(in, line)) return 0.0;
+  int column = 0, seconds_column = -1;
+  for (const std::string& name : split_list(line)) {
+    if (name == "seconds") seconds_column = column;
+    ++column;
+  }
+  double sum = 0.0;
+  while (seconds_column >= 0 && std::getline(in, line)) {
+    const std::vector<std::string> cells = split_list(line);
+    if (int(cells.size()) > seconds_column && !cells[size_t(seconds_column)].empty())
+      sum += std::stod(cells[size_t(seconds_column)]);
+  }
+  return sum;
+}
+
+ChildRun best_of(const fs::path& config, int threads, const fs::path& log, int repeat,
+                 const fs::path& summary = {}) {
   ChildRun best;
   for (int k = 0; k < repeat; ++k) {
-    const ChildRun r = run_job(config, threads, log);
+    ChildRun r = run_job(config, threads, log);
     if (!r.ok) return r;
+    if (!summary.empty()) r.frame_seconds = frame_seconds(summary);
     if (k == 0 || r.seconds < best.seconds) best = r;
   }
   return best;
@@ -125,6 +177,7 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const double setup = thread_seconds() - t_setup;
   double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
   int iterations = 0, count = 0;
+  size_t hashes = 0;
   fs::create_directories(scratch / "frames");
   fs::create_directories(scratch / "distortion");
   for (size_t k = 1; k < frames.size(); ++k) {
@@ -147,13 +200,14 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const double t_shear = (thread_seconds() - t0);
     const TriMesh output{result.V, templ.F};
     const Topology& topology = massager.topology();
+    const DistanceOptions sampling = default_sequence_measures();  // the job's "measures"
     const DistanceStats out_to_in =
-        one_sided_distance(output, reference.bvh(), {}, &reference.planes(), &topology);
+        one_sided_distance(output, reference.bvh(), sampling, &reference.planes(), &topology);
     TriangleBvh output_bvh = reference.bvh();
     output_bvh.refit(result.V);
     const TrianglePlanes output_planes(result.V, templ.F, &topology);
     const DistanceStats in_to_out =
-        one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
+        one_sided_distance(file.mesh, output_bvh, sampling, &output_planes, &topology);
     measure += (thread_seconds() - t0);
     shear += t_shear;
     distance += (thread_seconds() - t0) - t_shear;
@@ -164,6 +218,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     write_file_atomic(scratch / "frames" / frames[k].filename(), obj);
     write_file_atomic(
         scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"), csv);
+    // The frame record's hashes: the input as read, the two outputs.
+    hashes += sha256_hex(bytes).size() + sha256_hex(obj).size() + sha256_hex(csv).size();
     write += (thread_seconds() - t0);
     ++count;
     std::printf(
@@ -179,13 +235,15 @@ void stages(const fs::path& crane, const fs::path& scratch) {
       "  read     %7.1f ms/frame  (%4.1f%%)\n"
       "  optimize %7.1f ms/frame  (%4.1f%%)  %.1f ms per iteration, %.1f iterations/frame\n"
       "  measure  %7.1f ms/frame  (%4.1f%%)  shear %.1f ms, distances %.1f ms\n"
-      "  write    %7.1f ms/frame  (%4.1f%%)\n"
+      "  write    %7.1f ms/frame  (%4.1f%%)  formatted, SHA-256 for the record, written "
+      "atomically\n"
       "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
       count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
       1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
       double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
       1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * total / count,
       count / total);
+  if (hashes == 0) std::printf("(no frame)\n");
 }
 
 }  // namespace
@@ -194,7 +252,9 @@ int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
   fs::path keep;
   int repeat = 3, short_frames = 50, long_frames = 1000;
-  bool memory = true, stage_timings = true, job = true;
+  bool memory = true, stage_timings = true, job = true, spacing = false, iterations = false;
+  std::vector<int> iteration_counts = {5, 8, 10, 12, 15};
+  std::vector<double> tolerances = {1e-3, 3e-3};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -218,7 +278,20 @@ int main(int argc, char** argv) {
       stage_timings = false;
     else if (a == "--no-job")
       job = false;
-    else if (a == "--keep")
+    else if (a == "--tables")
+      spacing = iterations = true;
+    else if (a == "--spacing-table")
+      spacing = true;
+    else if (a == "--iterations-table")
+      iterations = true;
+    else if (a == "--iterations") {
+      iteration_counts.clear();
+      for (const std::string& item : split_list(next()))
+        iteration_counts.push_back(std::stoi(item));
+    } else if (a == "--tolerances") {
+      tolerances.clear();
+      for (const std::string& item : split_list(next())) tolerances.push_back(std::stod(item));
+    } else if (a == "--keep")
       keep = next();
     else if (a == "--seqmassage") {
       static std::string bin;
@@ -227,7 +300,9 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
-                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]\n");
+                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]"
+                   " [--tables] [--spacing-table] [--iterations-table] [--iterations LIST]"
+                   " [--tolerances LIST]\n");
       return 2;
     }
   }
@@ -257,14 +332,18 @@ int main(int argc, char** argv) {
         "best of %d):\n",
         frames, repeat);
     for (int threads : {1, 2}) {
-      const ChildRun r = best_of(config, threads, scratch / "crane.log", repeat);
+      const ChildRun r = best_of(config, threads, scratch / "crane.log", repeat,
+                                 scratch / "crane" / "summary.csv");
       if (!r.ok) {
         std::printf("  %d thread(s): FAILED, see %s\n", threads,
                     (scratch / "crane.log").string().c_str());
         continue;
       }
-      std::printf("  %d thread(s): %7.3f s wall (%6.3f s CPU), %6.1f frames/s, max RSS %6.1f MB\n",
-                  threads, r.seconds, r.cpu_seconds, frames / r.seconds, r.max_rss_kb / 1024.0);
+      std::printf(
+          "  %d thread(s): %7.3f s wall (%6.3f s CPU, %.2f cores busy), %6.1f frames/s, max RSS "
+          "%6.1f MB; frames in progress at once %.2f\n",
+          threads, r.seconds, r.cpu_seconds, r.cpu_seconds / r.seconds, frames / r.seconds,
+          r.max_rss_kb / 1024.0, r.frame_seconds / r.seconds);
     }
   }
 
@@ -284,6 +363,21 @@ int main(int argc, char** argv) {
       }
       std::printf("  %5d frames: max RSS %6.1f MB, %7.2f s wall (%7.2f s CPU), %6.1f frames/s\n",
                   frames, r.max_rss_kb / 1024.0, r.seconds, r.cpu_seconds, frames / r.seconds);
+    }
+  }
+  if (spacing) {
+    if (fs::exists(crane / "frame_0000.obj"))
+      spacing_table(crane);
+    else
+      std::printf("spacing table: skipped, %s not found\n", crane.string().c_str());
+  }
+  if (iterations) {
+    for (const char* name : {"vlasic_crane", "vlasic_samba"}) {
+      const fs::path dir = data / "sequences" / name;
+      if (fs::exists(dir / "frame_0000.obj"))
+        iterations_table(dir, iteration_counts, tolerances);
+      else
+        std::printf("iterations table: %s skipped, not found\n", dir.string().c_str());
     }
   }
   if (keep.empty()) fs::remove_all(scratch);

@@ -122,8 +122,9 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
     for (int t = r.begin(); t != r.end(); ++t) {
       Partial& acc = partial[t];
       const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
-      // Consecutive samples are close: the previous one's triangle is tried first.
-      int hint = -1;
+      // Consecutive samples are close: the previous one's triangle is tried first (the first
+      // sample tries the corresponding triangle of B, if there is one).
+      int hint = options.corresponding_triangles && t < FB.rows() ? t : -1;
       auto sample = [&](const Vec3& q) {
         double best2 = std::numeric_limits<double>::infinity();
         int best = -1;

@@ -13,6 +13,11 @@ struct DistanceOptions {
   double spacing = 0.25;
   bool sample_edges = true;  ///< points along every edge, at most `spacing` apart
   bool sample_faces = true;  ///< points inside every triangle, on a barycentric lattice
+  /// A's triangle t and B's triangle t are the same triangle moved (a frame and its corrected
+  /// output share their connectivity): the first sample of A's triangle t tries B's triangle t
+  /// first (the others, as always, the previous sample's closest triangle). Only where the
+  /// search starts: the distances stay exact.
+  bool corresponding_triangles = false;
 };
 
 /// Distances from the samples on A to B. The relative values are divided by the diagonal of the

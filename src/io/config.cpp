@@ -441,6 +441,13 @@ void read_sequence_input(const Section& input, const fs::path& base, InputConfig
   read(range, "step", in.range.step, 1);
 }
 
+// "measures" of the sequence job.
+void read_sequence_measures(const Section& s, DistanceOptions& m) {
+  read(s, "spacing", m.spacing, Interval{0.0, true});
+  read(s, "sample_edges", m.sample_edges);
+  read(s, "sample_faces", m.sample_faces);
+}
+
 // "checks", "shard" and "resume" of the sequence job.
 void read_run_controls(const Section& root, JobConfig& c) {
   const Section checks(root.get("checks"), "checks",
@@ -618,7 +625,7 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
   const fs::path base = fs::absolute(base_dir).lexically_normal();
   JobConfig c;
   const Section root(&document, "",
-                     {"job", "input", "template", "output", "massage", "threads",
+                     {"job", "input", "template", "output", "massage", "measures", "threads",
                       "frames_in_flight", "checks", "shard", "resume"});
   root.require("job", "the kind of job: \"sequence\"");
   read(root, "job", c.job, kJobs);
@@ -677,6 +684,9 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
                "lawson_floor", "solver", "solver_tolerance", "solver_max_iterations",
                "closest_points", "walk_max_steps", "pin_boundary", "pinned"}),
       c.massage);
+  read_sequence_measures(
+      Section(root.get("measures"), "measures", {"spacing", "sample_edges", "sample_faces"}),
+      c.measures);
   read(root, "threads", c.threads, 0, 4096);
   read(root, "frames_in_flight", c.frames_in_flight, 0, 1000000);
   read_run_controls(root, c);
@@ -738,6 +748,9 @@ json to_json(const JobConfig& c) {
                   {"walk_max_steps", m.walk_max_steps},
                   {"pin_boundary", m.pin_boundary},
                   {"pinned", m.pinned}};
+  j["measures"] = {{"spacing", c.measures.spacing},
+                   {"sample_edges", c.measures.sample_edges},
+                   {"sample_faces", c.measures.sample_faces}};
   j["threads"] = c.threads;
   j["frames_in_flight"] = c.frames_in_flight;
   const FrameChecks& checks = c.checks;
@@ -896,6 +909,13 @@ void read_measures(const Section& s, MeasureOptions& m) {
 }
 
 }  // namespace
+
+DistanceOptions default_sequence_measures() {
+  DistanceOptions o;
+  o.spacing = 0.25;
+  o.corresponding_triangles = true;
+  return o;
+}
 
 MassageOptions default_massage_options(JobKind job) {
   MassageOptions o;

@@ -1,5 +1,10 @@
 #include "io/sha256.hpp"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <cpuid.h>
+#include <immintrin.h>
+#endif
+
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -25,6 +30,57 @@ constexpr uint32_t kRound[64] = {
 inline uint32_t rotr(uint32_t x, int n) {
   return (x >> n) | (x << (32 - n));
 }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+// `count` 64-byte blocks with the SHA extensions of x86 (Intel since Goldmont and Ice Lake, AMD
+// since Zen): about eight times the portable code's speed. The state stays in the order of h_.
+__attribute__((target("sha,sse4.1"))) void blocks_sha_ni(uint32_t* state, const unsigned char* data,
+                                                         size_t count) {
+  const __m128i bswap = _mm_set_epi64x(0x0c0d0e0f08090a0bULL, 0x0405060700010203ULL);
+  __m128i tmp = _mm_shuffle_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(state)), 0xB1);
+  __m128i state1 =
+      _mm_shuffle_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(state + 4)), 0x1B);
+  __m128i state0 = _mm_alignr_epi8(tmp, state1, 8);  // ABEF
+  state1 = _mm_blend_epi16(state1, tmp, 0xF0);       // CDGH
+  for (; count > 0; --count, data += 64) {
+    const __m128i abef = state0, cdgh = state1;
+    __m128i w[16];  // the message schedule, four words each
+    for (int g = 0; g < 16; ++g) {
+      if (g < 4) {
+        w[g] = _mm_shuffle_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(data + 16 * g)),
+                                bswap);
+      } else {
+        // W[t] = σ1(W[t−2]) + W[t−7] + σ0(W[t−15]) + W[t−16], four at a time.
+        const __m128i x = _mm_add_epi32(_mm_sha256msg1_epu32(w[g - 4], w[g - 3]),
+                                        _mm_alignr_epi8(w[g - 1], w[g - 2], 4));
+        w[g] = _mm_sha256msg2_epu32(x, w[g - 1]);
+      }
+      __m128i k =
+          _mm_add_epi32(w[g], _mm_loadu_si128(reinterpret_cast<const __m128i*>(kRound + 4 * g)));
+      state1 = _mm_sha256rnds2_epu32(state1, state0, k);
+      k = _mm_shuffle_epi32(k, 0x0E);
+      state0 = _mm_sha256rnds2_epu32(state0, state1, k);
+    }
+    state0 = _mm_add_epi32(state0, abef);
+    state1 = _mm_add_epi32(state1, cdgh);
+  }
+  tmp = _mm_shuffle_epi32(state0, 0x1B);        // FEBA
+  state1 = _mm_shuffle_epi32(state1, 0xB1);     // DCHG
+  state0 = _mm_blend_epi16(tmp, state1, 0xF0);  // DCBA
+  state1 = _mm_alignr_epi8(state1, tmp, 8);     // HGFE
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(state), state0);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(state + 4), state1);
+}
+
+bool has_sha_ni() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  if (!__get_cpuid_count(7, 0, &a, &b, &c, &d)) return false;
+  const bool sha = b & (1u << 29);
+  if (!__get_cpuid(1, &a, &b, &c, &d)) return false;
+  const bool sse41 = c & (1u << 19), ssse3 = c & (1u << 9);
+  return sha && sse41 && ssse3;
+}
+#endif
 
 }  // namespace
 
@@ -66,6 +122,17 @@ void Sha256::block(const unsigned char* p) {
   h_[7] += h;
 }
 
+void Sha256::blocks(const unsigned char* p, size_t count) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool hardware = has_sha_ni();
+  if (hardware) {
+    blocks_sha_ni(h_.data(), p, count);
+    return;
+  }
+#endif
+  for (; count > 0; --count, p += 64) block(p);
+}
+
 Sha256& Sha256::update(const void* data, size_t size) {
   if (done_) throw std::logic_error("Sha256::update after hex()");
   const auto* p = static_cast<const unsigned char*>(data);
@@ -77,10 +144,12 @@ Sha256& Sha256::update(const void* data, size_t size) {
     p += take;
     size -= take;
     if (buffered_ < buffer_.size()) return *this;
-    block(buffer_.data());
+    blocks(buffer_.data(), 1);
     buffered_ = 0;
   }
-  for (; size >= 64; p += 64, size -= 64) block(p);
+  blocks(p, size / 64);
+  p += size / 64 * 64;
+  size %= 64;
   std::memcpy(buffer_.data(), p, size);
   buffered_ = size;
   return *this;

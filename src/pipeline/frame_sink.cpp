@@ -19,25 +19,13 @@ fs::path positions_file(const std::string& frame_name) {
   return fs::path("positions") / fs::path(frame_name).replace_extension(".bin");
 }
 
-// Writes each frame to its own file under output.dir, atomically; remembers the frames that have
-// one (written or kept), in order.
+// Remembers the frames that have a file under output.dir, in order.
 class FileWriter : public FrameWriter {
  public:
-  FileWriter(fs::path dir, const FrameSink& sink) : dir_(std::move(dir)), sink_(sink) {}
-  void write(int index, const std::string& bytes) override {
-    write_file_atomic(dir_ / sink_.output_file(index), bytes);
-    frames_.push_back(index);
-  }
   void keep(int index) override { frames_.push_back(index); }
-  void skip(int index) override {
-    std::error_code ec;
-    fs::remove(dir_ / sink_.output_file(index), ec);
-  }
   std::vector<std::string> finish() override { return {}; }
 
  protected:
-  fs::path dir_;
-  const FrameSink& sink_;
   std::vector<int> frames_;
 };
 
@@ -65,9 +53,7 @@ class ObjSink : public FrameSink {
     if (unchanged && !input.bytes.empty()) return input.bytes;
     return format_obj(*input.obj, V);
   }
-  std::unique_ptr<FrameWriter> start() const override {
-    return std::make_unique<FileWriter>(out_, *this);
-  }
+  std::unique_ptr<FrameWriter> start() const override { return std::make_unique<FileWriter>(); }
 
  private:
   fs::path out_;
@@ -82,9 +68,8 @@ class ObjSink : public FrameSink {
 
 class GlbWriter : public FileWriter {
  public:
-  GlbWriter(const JobConfig& config, const FrameSink& sink,
-            std::shared_ptr<const FrameSource> source)
-      : FileWriter(config.output.dir, sink), config_(config), source_(std::move(source)) {}
+  GlbWriter(const JobConfig& config, std::shared_ptr<const FrameSource> source)
+      : config_(config), source_(std::move(source)) {}
 
   std::vector<std::string> finish() override {
     if (config_.shard.sharded()) return {};  // `seqmassage merge` assembles it
@@ -125,7 +110,7 @@ class GlbSink : public FrameSink {
     return std::string(reinterpret_cast<const char*>(V.data()), size_t(V.size()) * sizeof(double));
   }
   std::unique_ptr<FrameWriter> start() const override {
-    return std::make_unique<GlbWriter>(config_, *this, source_);
+    return std::make_unique<GlbWriter>(config_, source_);
   }
 
  private:

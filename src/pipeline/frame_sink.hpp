@@ -16,19 +16,16 @@
 
 namespace sm {
 
-/// The state of one run's output. Its methods are called in frame order, from one thread at a
-/// time, once per frame of the run.
+/// The state of one run's output. Each frame's file (FrameSink::output_file under output.dir) is
+/// written by the job itself, atomically, as soon as the frame is done, from any thread; the
+/// writer's methods are called in frame order, from one thread at a time, once per frame of the
+/// run that has an output.
 class FrameWriter {
  public:
   virtual ~FrameWriter() = default;
-  /// Writes frame `index`'s encoded bytes to its file (FrameSink::output_file), atomically.
-  virtual void write(int index, const std::string& bytes) = 0;
-  /// Frame `index` kept its file from an earlier run (resumed): nothing is written, but a
-  /// whole-sequence output includes it.
+  /// Frame `index` has its file in place (written by this run, or kept from an earlier one when
+  /// resuming): a whole-sequence output includes it.
   virtual void keep(int index) = 0;
-  /// Frame `index` has no output (it failed, with "on_failure": "skip"): removes its file left by
-  /// an earlier run, if any.
-  virtual void skip(int index) = 0;
   /// Completes the output from the frames written and kept (all of them, or those done before an
   /// interruption); returns warnings. Throws IoError when a file cannot be written.
   virtual std::vector<std::string> finish() = 0;

@@ -173,6 +173,11 @@ std::string check_output(const SequencePlan& plan, const TriMesh& input, const P
   return "";
 }
 
+void write_record(const SequencePlan& plan, const Work& w) {
+  write_file_atomic(record_file(plan.config.output.dir, plan.source->name(w.index)),
+                    to_json(w.record).dump(1) + "\n");
+}
+
 void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   const auto t0 = Clock::now();
   const JobConfig& c = plan.config;
@@ -221,11 +226,12 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       const TriMesh output{V, F};
       const Topology& topology = plan.massager->topology();
       s.out_to_in =
-          one_sided_distance(output, reference->bvh(), {}, &reference->planes(), &topology);
+          one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(), &topology);
       TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
       output_bvh.refit(V);
       const TrianglePlanes output_planes(V, F, &topology);
-      s.in_to_out = one_sided_distance(file.mesh, output_bvh, {}, &output_planes, &topology);
+      s.in_to_out =
+          one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology);
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
@@ -261,6 +267,33 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   }
   r.summary = s;
   r.iterations_csv = w.extras.iterations_csv;
+}
+
+// A frame's files, written in the parallel stage: no other frame writes them, so the frames'
+// writes (and their fsyncs) overlap the others' work instead of queueing in the serial stage. The
+// order within the frame is kept: the old record is removed first, then the outputs are written
+// (or, for a frame without output, removed), then the record, which comes back last. With extra
+// outputs, which the serial stage writes in frame order (the checker texture comes with the first
+// checker frame), the record waits for them there (write_record). Frees the encoded bytes.
+void write_frame_files(const SequencePlan& plan, Work& w) {
+  const JobConfig& c = plan.config;
+  const fs::path& out = c.output.dir;
+  std::error_code ec;
+  fs::remove(record_file(out, plan.source->name(w.index)), ec);
+  const fs::path frame = out / plan.sink->output_file(w.index);
+  const fs::path csv = out / distortion_file(plan, w.index);
+  if (w.has_output) {
+    write_file_atomic(frame, w.out);
+    if (c.output.per_triangle_csv) write_file_atomic(csv, w.csv);
+  } else {
+    fs::remove(frame, ec);
+    fs::remove(csv, ec);
+    for (const auto& [file, bytes] : w.extras.files) fs::remove(out / file, ec);
+    w.extras.files.clear();
+  }
+  std::string().swap(w.out);
+  std::string().swap(w.csv);
+  if (!plan.extras->any()) write_record(plan, w);
 }
 
 }  // namespace
@@ -365,6 +398,9 @@ std::string describe_plan(const SequencePlan& plan) {
   s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
     << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>() << ", solver "
     << m["solver"].get<std::string>() << "\n";
+  s << "distances (summary.csv): samples every " << format_number(c.measures.spacing)
+    << " mean edge lengths, at the vertices" << (c.measures.sample_edges ? ", along the edges" : "")
+    << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
   s << plan.sink->describe(plan.run_frames);
@@ -400,8 +436,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const size_t total = plan.run_frames.size();
   size_t next = 0;
   // The first exception of a stage stops the input and is rethrown once the frames in flight have
-  // drained, unwritten: thrown through parallel_pipeline, it would leak them (oneTBB does not
-  // destroy the tokens of a cancelled pipeline).
+  // drained (those that finish after it are not written; one finishing at the same moment may
+  // have written its complete files): thrown through parallel_pipeline, it would leak them (oneTBB
+  // does not destroy the tokens of a cancelled pipeline).
   std::exception_ptr error;
   std::mutex error_mutex;
   std::atomic<bool> failed{false};
@@ -457,6 +494,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                   }
                   w->record.input_hash = input_hash;
                   process_frame(plan, *extras, *w);
+                  if (!failed) write_frame_files(plan, *w);  // else dropped, like the others
                   return w;
                 })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
@@ -466,25 +504,15 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                     extras->keep(w->record.iterations_csv);
                     ++result.resumed;
                   } else {
+                    // The frame's own files are written (write_frame_files); its extra outputs
+                    // (or, without output, its iterations.csv rows) go here, in frame order, and
+                    // then its record if they held it back.
                     if (c.resume) ++result.redone[w->redo];
-                    // The record goes first and comes back last: a record on disk always
-                    // describes complete outputs of its config.
-                    const fs::path record = record_file(out, plan.source->name(w->index));
-                    std::error_code ec;
-                    fs::remove(record, ec);
-                    const fs::path csv = out / distortion_file(plan, w->index);
-                    if (w->has_output) {
-                      writer->write(w->index, w->out);
-                      if (c.output.per_triangle_csv) write_file_atomic(csv, w->csv);
+                    if (w->has_output) writer->keep(w->index);
+                    if (plan.extras->any()) {
                       extras->write(w->extras);
-                    } else {
-                      writer->skip(w->index);
-                      fs::remove(csv, ec);
-                      for (const auto& [file, bytes] : w->extras.files) fs::remove(out / file, ec);
-                      w->extras.files.clear();
-                      extras->write(w->extras);  // its iterations.csv rows
+                      write_record(plan, *w);
                     }
-                    write_file_atomic(record, to_json(w->record).dump(1) + "\n");
                   }
                   const FrameSummary& s = w->summary;
                   append_frame_warnings(s, c.output.on_failure, result.warnings);

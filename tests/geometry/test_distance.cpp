@@ -133,6 +133,33 @@ TEST_CASE("distance does not depend on the number of threads", "[distance]") {
   CHECK(one.max > 0.0);
 }
 
+TEST_CASE("distance with corresponding triangles is the same distance", "[distance]") {
+  // B is A moved vertex by vertex (same connectivity, as a frame and its corrected output), and
+  // a mesh with fewer triangles than A, where the hint must be ignored past B's last triangle.
+  const TriMesh a = make_torus(40, 16, 2.0, 0.5);
+  TriMesh moved = a;
+  for (int i = 0; i < moved.num_vertices(); ++i)
+    moved.V.row(i) += 0.02 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(5.0 * i), std::sin(i));
+  const TriMesh fewer = scaled(make_icosphere(2, 1.0), 2.2);
+  REQUIRE(fewer.num_triangles() < a.num_triangles());
+  const TriMesh* targets[] = {&moved, &fewer};
+  for (const TriMesh* b : targets) {
+    DistanceOptions plain, hinted;
+    hinted.corresponding_triangles = true;
+    for (double spacing : {0.25, 0.6}) {
+      plain.spacing = hinted.spacing = spacing;
+      const TriangleBvh bvh(*b);
+      const DistanceStats x = one_sided_distance(a, bvh, plain);
+      const DistanceStats y = one_sided_distance(a, bvh, hinted);
+      CHECK(y.samples == x.samples);
+      CHECK(y.max == Approx(x.max).epsilon(1e-12));
+      CHECK(y.mean == Approx(x.mean).epsilon(1e-12));
+      CHECK(y.rms == Approx(x.rms).epsilon(1e-12));
+      CHECK(x.max > 0.0);
+    }
+  }
+}
+
 TEST_CASE("distance input errors", "[distance]") {
   const TriMesh a = make_grid(2, 2, 1.0, 1.0);
   DistanceOptions o;

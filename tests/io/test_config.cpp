@@ -106,6 +106,36 @@ TEST_CASE("every MassageOptions key is settable under massage") {
   CHECK(m.pinned == std::vector<int>{4, 2, 9});
 }
 
+TEST_CASE("measures: the sampling of summary.csv's distances, every DistanceOptions key") {
+  const JobConfig defaults = parse(kMinimal);
+  CHECK(defaults.measures.spacing == 0.25);
+  CHECK(defaults.measures.sample_edges);
+  CHECK(defaults.measures.sample_faces);
+  CHECK(defaults.measures.corresponding_triangles);  // set by the job, not a key
+  const JobConfig c = parse(
+      with("measures", R"({"spacing": 0.125, "sample_edges": false, "sample_faces": false})"));
+  CHECK(c.measures.spacing == 0.125);
+  CHECK_FALSE(c.measures.sample_edges);
+  CHECK_FALSE(c.measures.sample_faces);
+  CHECK(c.measures.corresponding_triangles);
+  const json resolved = to_json(c);
+  CHECK(resolved["measures"] ==
+        json{{"spacing", 0.125}, {"sample_edges", false}, {"sample_faces", false}});
+  CHECK(to_json(parse_config(resolved, "/elsewhere")) == resolved);
+
+  CHECK(config_error(with("measures", R"({"spacing": 0})")) ==
+        "measures.spacing: expected a number > 0, got 0");
+  CHECK(config_error(with("measures", R"({"spacing": "fine"})")) ==
+        "measures.spacing: expected a number > 0, got \"fine\"");
+  CHECK(config_error(with("measures", R"({"sample_edges": 1})")) ==
+        "measures.sample_edges: expected true or false, got 1");
+  CHECK(config_error(with("measures", R"({"spacng": 0.5})")) ==
+        "measures.spacng: unknown key (did you mean \"spacing\"?)");
+  CHECK(config_error(with("measures", R"({"feature_angle": 30})"))
+            .rfind("measures.feature_angle: unknown key", 0) == 0);
+  CHECK(config_error(with("measures", "0.5")) == "measures: expected an object, got 0.5");
+}
+
 TEST_CASE("the resolved config round-trips through to_json") {
   const JobConfig c = parse(R"({"job": "sequence",
     "input": {"synthetic": {"frames": 5, "bend": 45, "seed": 3}, "range": {"start": 1, "stop": 4, "step": 2}},

@@ -24,6 +24,32 @@ TEST_CASE("SHA-256 of the standard examples") {
   }
 }
 
+TEST_CASE("SHA-256 of varied bytes around block boundaries (hashlib's digests)") {
+  // Every byte value, not one repeated letter: the x86 SHA-extension path and the portable one
+  // must both give Python's hashlib.sha256 of these prefixes.
+  std::string bytes(100003, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<char>((i * 7919 + (i >> 8)) % 251);
+  const std::pair<size_t, const char*> expected[] = {
+      {55, "fd6f42647486d0fc7a569c6323bd5d0ffa383b9dac514f555877829297856d36"},
+      {56, "72d3563b4bedfb81355271f6b89196e278891e5598aa35eda8c23d14d100510f"},
+      {63, "34268e23e10f6a5c154eb09f7efe31b684c1e7a9d74ff4929e258f87178040a8"},
+      {64, "690db028aa8003bab5c4afa5611cafa88040152b3b26a12a5e1ec3061939811b"},
+      {65, "e88e7e570c255a8e47220ad916b6488134926b9e49b435ba51649f9d566fcc1d"},
+      {127, "db0556ed6332f630b4cfea69e3bbe74cd79b4e7ca1cc4efbd02a018c10c16549"},
+      {128, "989fefd3388c6e464233a5743bec7618edbb300a6957a39799ce64a640bada00"},
+      {1000, "478eea67057d160a964e507852cd83be658fa6182c58014be889a9e10a991095"},
+      {100003, "b843fbbea64f9664bc09ef0952198f6782808c2f422fb81bb1ff9cd37a00bdcd"}};
+  for (const auto& [size, digest] : expected) {
+    INFO(size << " bytes");
+    CHECK(sha256_hex(std::string_view(bytes).substr(0, size)) == digest);
+    Sha256 pieces;  // in uneven pieces: buffered blocks, then runs of whole blocks
+    for (size_t at = 0; at < size; at += 1000 + at % 97)
+      pieces.update(bytes.data() + at, std::min(size - at, 1000 + at % 97));
+    CHECK(pieces.hex() == digest);
+  }
+}
+
 TEST_CASE("SHA-256 of a file, and of a missing one") {
   test::TempDir dir;
   std::ofstream(dir / "abc.txt", std::ios::binary) << "abc";

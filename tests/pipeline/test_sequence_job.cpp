@@ -87,6 +87,37 @@ TEST_CASE("the output bytes do not depend on the number of threads") {
     CHECK(read_file(dir / "one" / file) == read_file(dir / "two" / file));
 }
 
+TEST_CASE("measures sets the sampling of summary.csv's distances, the same with 1 or 2 threads") {
+  test::TempDir dir("job_measures");
+  JobConfig c = test::tube_job(dir.path(), test::small_tube(4));
+  auto run = [&](const char* out, int threads) {
+    c.threads = threads;
+    c.output.dir = dir / out;
+    return run_sequence_job(plan_sequence_job(c));
+  };
+  const SequenceResult fine = run("fine", 2);
+  c.measures.spacing = 0.7;
+  run("coarse1", 1);
+  const SequenceResult coarse = run("coarse2", 2);
+  c.measures.sample_edges = c.measures.sample_faces = false;
+  const SequenceResult vertices = run("vertices", 2);
+  for (const char* file : {"summary.csv", "frames/frame_0002.obj", "records/frame_0003.json"})
+    CHECK(read_file(dir / "coarse1" / file) == read_file(dir / "coarse2" / file));
+  // The corrected frames do not depend on how they are measured; the distances do.
+  CHECK(read_file(dir / "fine/frames/frame_0003.obj") ==
+        read_file(dir / "vertices/frames/frame_0003.obj"));
+  REQUIRE(fine.frames.size() == 4);
+  for (size_t k = 1; k < 4; ++k) {
+    const DistanceStats& f = fine.frames[k].out_to_in;
+    const DistanceStats& v = vertices.frames[k].out_to_in;
+    CHECK(v.samples < coarse.frames[k].out_to_in.samples);
+    CHECK(coarse.frames[k].out_to_in.samples < f.samples);
+    CHECK(v.samples == fine.frames[k].vertices);
+    CHECK(f.max > 0.0);
+    CHECK(v.max <= f.max * (1.0 + 1e-9));  // the vertices are among the finer sampling's samples
+  }
+}
+
 TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
   test::TempDir dir("job_template");
   JobConfig c = test::tube_job(dir.path(), test::small_tube(3));
