@@ -16,7 +16,7 @@ stage() {
   stage_start=$SECONDS
 }
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSEQMASSAGE_UNITY_BUILD=ON >/dev/null
 cmake --build build -j"$jobs"
 stage "Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"
@@ -24,7 +24,7 @@ stage "Release tests"
 
 if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEQMASSAGE_ASAN=ON \
-    -DSEQMASSAGE_BUILD_TOOLS=OFF >/dev/null
+    -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_UNITY_BUILD=ON >/dev/null
   cmake --build build-asan -j"$jobs"
   stage "ASan+UBSan build"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

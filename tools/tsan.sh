@@ -58,7 +58,8 @@ build_onetbb() {
     apt-get "${apt_options[@]}" source -qq --download-only "$source_package=$source_version" &&
     dpkg-source -x ./*.dsc "$build/onetbb-src" >/dev/null) || return 1
   cmake -S "$build/onetbb-src" -B "$build/onetbb-build" "${generator[@]}" "${launcher[@]}" \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX="$tbb_prefix" \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+    -DCMAKE_INSTALL_PREFIX="$tbb_prefix" \
     -DTBB_SANITIZE=thread -DTBB_STRICT=OFF -DTBB_TEST=OFF -DTBB_EXAMPLES=OFF \
     -DTBBMALLOC_BUILD=OFF -DTBB_DISABLE_HWLOC_AUTOMATIC_SEARCH=ON >/dev/null || return 1
   cmake --build "$build/onetbb-build" -j"$jobs" || return 1
@@ -73,7 +74,7 @@ fi
 
 # 2. seqmassage with ThreadSanitizer, against that oneTBB.
 cmake -S . -B "$build" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DSEQMASSAGE_TSAN=ON -DSEQMASSAGE_BUILD_TOOLS=OFF -DTBB_DIR="$tbb_prefix/lib/cmake/TBB" >/dev/null
+  -DSEQMASSAGE_TSAN=ON -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_UNITY_BUILD=ON -DTBB_DIR="$tbb_prefix/lib/cmake/TBB" >/dev/null
 if [ ${#suites[@]} -gt 0 ]; then
   cmake --build "$build" -j"$jobs" --target "${suites[@]}" seqmassage
 else

@@ -5,12 +5,6 @@
 namespace sm {
 namespace {
 
-// A triangle whose doubled area |ab × ac| is at most this fraction of its longest edge squared
-// (height below ~1e-8 of its length) is handled as the union of its three edges. Above the
-// threshold the face case below is accurate to about 1e-8 of the edge length; below it, the
-// closest point on the edges is at most the inradius (< 1e-8 of the edge length) from the face's.
-constexpr double kDegenerateRatio2 = 1e-16;
-
 TrianglePoint make_point(const Vec3& p, const Vec3& q, double u, double v, double w,
                          TriangleRegion region) {
   return TrianglePoint{q, Vec3(u, v, w), region, (p - q).squaredNorm()};

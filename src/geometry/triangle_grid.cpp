@@ -15,7 +15,7 @@ constexpr double kMaxCellsPerTriangle = 8.0;
 constexpr long kMaxCellsPerEntry = 64;
 constexpr int kChunk = 64;  // boxes tested per SIMD pass
 
-float round_up(double x) {
+float grid_round_up(double x) {
   const float f = static_cast<float>(x);
   return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
@@ -88,7 +88,7 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
       const double lo = std::min({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
       const double hi = std::max({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
       centre[a] = static_cast<float>(0.5 * (lo + hi));
-      half[a] = round_up(std::max(hi - centre[a], centre[a] - lo));
+      half[a] = grid_round_up(std::max(hi - centre[a], centre[a] - lo));
     }
     for (int z = range[t][2]; z <= range[t][5]; ++z)
       for (int y = range[t][1]; y <= range[t][4]; ++y)

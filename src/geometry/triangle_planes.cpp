@@ -1,5 +1,7 @@
 #include "geometry/triangle_planes.hpp"
 
+#include "geometry/closest_point.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,19 +12,18 @@
 namespace sm {
 namespace {
 
-// closest_point_on_triangle's threshold: a triangle with |n|² <= this times its longest edge to
-// the fourth power is handled as its three edges.
-constexpr double kDegenerateRatio2 = 1e-16;
+// closest_point_on_triangle's threshold (kDegenerateRatio2, closest_point.hpp): a triangle with
+// |n|² <= it times its longest edge to the fourth power is handled as its three edges.
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // Float bounds for the certificate's values: never larger (altitudes), never smaller in magnitude
 // (bends) than the double ones. Rounding to the nearest float changes a value by at most 2^-24
 // of it, so scaling by 1 ∓ 2^-22 first is enough.
-float round_down(double x) {
+float shrink_to_float(double x) {
   return static_cast<float>(
       std::min(x * (1.0 - 0x1p-22), double(std::numeric_limits<float>::max())));
 }
-float round_away(double x) {
+float grow_to_float(double x) {
   return static_cast<float>(x * (1.0 + 0x1p-22));
 }
 
@@ -55,9 +56,9 @@ void TrianglePlanes::update(const Positions& V, const Triangles& F, const Topolo
       f.dual2 = n.cross(ab) * inv_n2;
       f.normal = n * (1.0 / std::sqrt(n2));
       // altitude over an edge = |n| / edge length
-      f.altitude2[0] = round_down(n2 / bc2);
-      f.altitude2[1] = round_down(n2 / ac2);
-      f.altitude2[2] = round_down(n2 / ab2);
+      f.altitude2[0] = shrink_to_float(n2 / bc2);
+      f.altitude2[1] = shrink_to_float(n2 / ac2);
+      f.altitude2[2] = shrink_to_float(n2 / ab2);
       f.bend[0] = f.bend[1] = f.bend[2] = kNaN;
     }
   });
@@ -83,7 +84,7 @@ void TrianglePlanes::update(const Positions& V, const Triangles& F, const Topolo
         const Vec3 d = ehat.cross(nu);
         const double sin_t = d.dot(f.normal), cos_t = -d.dot(f.normal.cross(ehat));
         if (!(1.0 + cos_t > 1e-6)) continue;  // folded back onto t: unknown
-        f.bend[k] = round_away(sin_t / (1.0 + cos_t));
+        f.bend[k] = grow_to_float(sin_t / (1.0 + cos_t));
       }
     }
   });

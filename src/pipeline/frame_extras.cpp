@@ -22,7 +22,7 @@ constexpr const char* kMaterial = "checker";
 constexpr const char* kMtl = "checker.mtl";
 constexpr const char* kPng = "checker.png";
 
-std::string short_number(double x) {
+std::string stream_number(double x) {
   std::ostringstream s;
   s << x;
   return s.str();
@@ -194,7 +194,7 @@ std::string FrameExtras::describe(const std::vector<int>& frames) const {
   std::string s;
   if (o.colored.enabled)
     s += "  colored/{before,after}/<name>.ply (" + frames_text(count_in(o.colored.frames, frames)) +
-         ": shear 0 blue to " + short_number(o.colored.max) + " and above red, " +
+         ": shear 0 blue to " + stream_number(o.colored.max) + " and above red, " +
          (o.colored.colors == ShearColorMode::Faces ? "per face" : "per vertex") + ")\n";
   if (o.checker.enabled)
     s += "  checker/{before,after}/<name>.obj, checker.mtl, checker.png (" +
