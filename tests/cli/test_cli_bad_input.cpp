@@ -184,9 +184,15 @@ TEST_CASE("a full disk: exit 4 naming the file, no partial or temporary file is 
   const test::CliRun partial =
       test::run_cli_args(job.dir.path(), {"--threads", "2", "job.json"}, limit);
   CHECK(partial.code == 4);
-  CHECK_THAT(partial.err,
-             Catch::Contains("cannot write '" + job.path("out/frames/frame_0001.obj").string() +
-                             "': File too large\n"));
+  // Frames write their files in the parallel stage, so whichever optimized frame (1 to 4, all
+  // larger than the limit) gets there first is the one named.
+  int named = 0;
+  for (const char* frame : {"frame_0001", "frame_0002", "frame_0003", "frame_0004"})
+    named += partial.err.find("cannot write '" +
+                              job.path(std::string("out/frames/") + frame + ".obj").string() +
+                              "': File too large\n") != std::string::npos;
+  INFO(partial.err);
+  CHECK(named >= 1);
   CHECK(temporaries_in(job.dir.path()) == 0);
   const auto written = snapshot(job.path("out"));
   CHECK(written.count("frames/frame_0000.obj") == 1);
