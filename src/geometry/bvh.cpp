@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geometry/closest_point.hpp"
+#include "geometry/float_bounds.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -29,21 +30,7 @@ int leaf_count(int ref) {
   return (~ref) & 7;
 }
 
-// Float bounds that contain the double ones (beyond the float range: the range's end or infinity).
 constexpr float kFloatInf = std::numeric_limits<float>::infinity();
-constexpr float kFloatMax = std::numeric_limits<float>::max();
-float round_down(double x) {
-  if (x > kFloatMax) return kFloatMax;
-  if (!(x >= -kFloatMax)) return -kFloatInf;
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -kFloatInf) : f;
-}
-float round_up(double x) {
-  if (x < -kFloatMax) return -kFloatMax;
-  if (!(x <= kFloatMax)) return kFloatInf;
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, kFloatInf) : f;
-}
 
 }  // namespace
 
@@ -138,8 +125,8 @@ void TriangleBvh::refit(const Positions& V) {
         }
       }
       for (int a = 0; a < 3; ++a) {
-        node.lo[k][a] = round_down(box.min()[a]);
-        node.hi[k][a] = round_up(box.max()[a]);
+        node.lo[k][a] = float_at_most(box.min()[a]);
+        node.hi[k][a] = float_at_least(box.max()[a]);
       }
     }
   }

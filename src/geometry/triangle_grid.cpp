@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "geometry/float_bounds.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -14,11 +15,6 @@ namespace {
 constexpr double kMaxCellsPerTriangle = 8.0;
 constexpr long kMaxCellsPerEntry = 64;
 constexpr int kChunk = 64;  // boxes tested per SIMD pass
-
-float grid_round_up(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
 
 }  // namespace
 
@@ -88,7 +84,7 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
       const double lo = std::min({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
       const double hi = std::max({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
       centre[a] = static_cast<float>(0.5 * (lo + hi));
-      half[a] = grid_round_up(std::max(hi - centre[a], centre[a] - lo));
+      half[a] = float_at_least(std::max(hi - centre[a], centre[a] - lo));
     }
     for (int z = range[t][2]; z <= range[t][5]; ++z)
       for (int y = range[t][1]; y <= range[t][4]; ++y)

@@ -184,10 +184,7 @@ ShapeTarget::ShapeTarget(const TriMesh& templ, const SparseMatrixR& lambda,
       edges_[2 * static_cast<size_t>(k)] = value[k] * e.dot(u);
       edges_[2 * static_cast<size_t>(k) + 1] = value[k] * e.dot(w);
     }
-    for (int d = 0; d < 3; ++d) {
-      v.normal[d] = nrm[d];
-      v.u[d] = u[d];
-    }
+    v.has_normal = nrm.squaredNorm() > 0.0;
     v.tangent[0] = lap.dot(u);
     v.tangent[1] = lap.dot(w);
     v.normal_part = lap.dot(nrm);
@@ -211,7 +208,7 @@ int ShapeTarget::evaluate(const Positions& start, const Triangles& F, const Spar
     for (int i = r.begin(); i != r.end(); ++i) {
       const Vertex& v = verts_[i];
       const Vec3 ns = unit_or_zero(normals.row(i).transpose(), ring_scale2(start, lambda, i));
-      if (v.normal[0] == 0.0 && v.normal[1] == 0.0 && v.normal[2] == 0.0) {
+      if (!v.has_normal) {
         delta.row(i).setZero();
         fallback[i] = outer[i + 1] > outer[i];
         continue;

@@ -66,9 +66,8 @@ class ShapeTarget {
 
  private:
   struct Vertex {
-    double normal[3];    ///< T's unit area-weighted normal (zero: undefined)
-    double u[3];         ///< a unit tangent; (u, normal × u, normal) is right-handed
-    double tangent[2];   ///< (A T)_i along u and along normal × u
+    bool has_normal;     ///< T's area-weighted normal n is defined (else δ_i = 0)
+    double tangent[2];   ///< (A T)_i along a unit tangent u and along n × u
     double normal_part;  ///< (A T)_i along the normal
   };
   std::vector<Vertex> verts_;
