@@ -331,6 +331,25 @@ const Names<OnFailure> kOnFailure = {{"copy_input", OnFailure::CopyInput},
                                      {"skip", OnFailure::Skip}};
 const std::vector<std::string> kShapes = {"bending_tube"};
 
+// Keys of the "massage" section, the same for every job (a test checks that every job accepts
+// every key to_json writes).
+const std::vector<std::string> kMassageKeys = {"weights",
+                                               "boundary_weights",
+                                               "shape_target",
+                                               "iterations",
+                                               "mu",
+                                               "samples",
+                                               "tolerance",
+                                               "lawson",
+                                               "lawson_floor",
+                                               "solver",
+                                               "solver_tolerance",
+                                               "solver_max_iterations",
+                                               "closest_points",
+                                               "walk_max_steps",
+                                               "pin_boundary",
+                                               "pinned"};
+
 void read_massage(const Section& s, MassageOptions& o) {
   read(s, "weights", o.weights, kWeights);
   read(s, "boundary_weights", o.boundary_weights, kBoundary);
@@ -677,13 +696,7 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
     read(gltf, "normals", c.output.gltf.normals);
   }
 
-  read_massage(
-      Section(root.get("massage"), "massage",
-              {"weights", "boundary_weights", "shape_target", "iterations", "mu", "samples",
-               "tolerance", "lawson",
-               "lawson_floor", "solver", "solver_tolerance", "solver_max_iterations",
-               "closest_points", "walk_max_steps", "pin_boundary", "pinned"}),
-      c.massage);
+  read_massage(Section(root.get("massage"), "massage", kMassageKeys), c.massage);
   read_sequence_measures(
       Section(root.get("measures"), "measures", {"spacing", "sample_edges", "sample_faces"}),
       c.measures);
@@ -843,24 +856,6 @@ const Names<MeshOutputFormat> kMeshFormats = {{"same", MeshOutputFormat::Same},
                                               {"obj", MeshOutputFormat::Obj},
                                               {"off", MeshOutputFormat::Off},
                                               {"ply", MeshOutputFormat::Ply}};
-// Keys of the "massage" section (the same for every job; parse_config lists them too, and a test
-// checks that both accept every key to_json writes).
-const std::vector<std::string> kMassageKeys = {"weights",
-                                               "boundary_weights",
-                                               "shape_target",
-                                               "iterations",
-                                               "mu",
-                                               "samples",
-                                               "tolerance",
-                                               "lawson",
-                                               "lawson_floor",
-                                               "solver",
-                                               "solver_tolerance",
-                                               "solver_max_iterations",
-                                               "closest_points",
-                                               "walk_max_steps",
-                                               "pin_boundary",
-                                               "pinned"};
 // Keys that only the sequence job's "input" knows (including its glTF input), refused with a note.
 const std::vector<std::string> kSequenceInputKeys = {"frames", "synthetic", "range",
                                                      "gltf",   "animation", "fps"};
@@ -911,8 +906,7 @@ void read_measures(const Section& s, MeasureOptions& m) {
 }  // namespace
 
 DistanceOptions default_sequence_measures() {
-  DistanceOptions o;
-  o.spacing = 0.25;
+  DistanceOptions o;  // the sampling's defaults
   o.corresponding_triangles = true;
   return o;
 }
