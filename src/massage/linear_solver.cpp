@@ -164,8 +164,41 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
   return bicgstab(K, M, R, X, tolerance, max_iterations, ws);
 }
 
+std::array<double, 3> centred_scale(const SparseMatrixR& K, const Positions& R, const Positions& X,
+                                    const std::vector<unsigned char>& fixed) {
+  const int n = static_cast<int>(K.rows());
+  const bool has_fixed = fixed.size() == static_cast<size_t>(n);
+  double mean[3] = {0.0, 0.0, 0.0};
+  long count = 0;
+  for (int i = 0; i < n; ++i) {
+    if (has_fixed && fixed[i]) continue;
+    for (int c = 0; c < 3; ++c) mean[c] += X(i, c);
+    ++count;
+  }
+  std::array<double, 3> scale{0.0, 0.0, 0.0};
+  if (count == 0) return {1.0, 1.0, 1.0};
+  for (double& m : mean) m /= static_cast<double>(count);
+  const int* outer = K.outerIndexPtr();
+  const double* values = K.valuePtr();
+  for (int i = 0; i < n; ++i) {
+    if (has_fixed && fixed[i]) continue;
+    double row_sum = 0.0;
+    for (int p = outer[i]; p < outer[i + 1]; ++p) row_sum += values[p];
+    for (int c = 0; c < 3; ++c) {
+      const double r = R(i, c) - row_sum * mean[c];
+      scale[c] += r * r;
+    }
+  }
+  double largest = 0.0;
+  for (double& s : scale) largest = std::max(largest, s = std::sqrt(s));
+  for (double& s : scale)
+    if (!(s > 0.0)) s = largest > 0.0 ? largest : 1.0;
+  return scale;
+}
+
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, Positions& X,
-                    double tolerance, int max_iterations, BicgstabWorkspace& w) {
+                    double tolerance, int max_iterations, BicgstabWorkspace& w,
+                    const std::array<double, 3>* scale) {
   SolveStats st;
   const int n = static_cast<int>(K.rows());
   Positions &r = w.r, &rhat = w.rhat, &p = w.p, &v = w.v, &y = w.y, &s = w.s, &z = w.z, &t = w.t;
@@ -174,7 +207,8 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
   rhat = r;
   p.setZero(n, 3);
   v.setZero(n, 3);
-  const Col3 rhs_norm = column_dots(R, R).sqrt();
+  const Col3 rhs_norm =
+      scale ? Col3((*scale)[0], (*scale)[1], (*scale)[2]) : Col3(column_dots(R, R).sqrt());
   Col3 target;
   for (int c = 0; c < 3; ++c) target[c] = tolerance * (rhs_norm[c] > 0.0 ? rhs_norm[c] : 1.0);
   Col3 rho = Col3::Ones(), alpha = Col3::Ones(), omega = Col3::Ones();
@@ -187,7 +221,8 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
   auto finish = [&](bool ok, const char* why) {
     st.ok = ok;
     st.message = why;
-    for (int c = 0; c < 3; ++c) st.residual = std::max(st.residual, res[c] / (target[c] / tolerance));
+    for (int c = 0; c < 3; ++c)
+      st.residual = std::max(st.residual, res[c] / (target[c] / tolerance));
     return st;
   };
   if (all_done()) return finish(true, "");
@@ -284,7 +319,8 @@ SolveStats DirectSolver::solve(const SparseMatrixR& K, const Positions& R, Posit
   multiply(K, X, KX);
   const Eigen::Array<double, 1, 3> rn = (R - KX).colwise().norm().array();
   const Eigen::Array<double, 1, 3> bn = R.colwise().norm().array();
-  for (int c = 0; c < 3; ++c) st.residual = std::max(st.residual, rn[c] / (bn[c] > 0 ? bn[c] : 1.0));
+  for (int c = 0; c < 3; ++c)
+    st.residual = std::max(st.residual, rn[c] / (bn[c] > 0 ? bn[c] : 1.0));
   st.ok = true;
   st.iterations = 1;
   return st;

@@ -2,6 +2,7 @@
 /// Solvers for K X = R with X, R n×3 (x, y, z share K, paper eq. 7) on a fixed sparsity pattern:
 /// ILU(0)-preconditioned BiCGSTAB on all three columns at once (one pass over K per product),
 /// warm-started from the current positions, and a sparse LU fall-back.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,8 +69,22 @@ struct BicgstabWorkspace {
 
 /// Preconditioned BiCGSTAB (van der Vorst) on the three columns together, each column with its
 /// own scalars and stopping test ‖R − K X‖ <= tolerance · ‖R‖. X holds the initial guess.
+/// With `scale` (3 positive values), column c stops at ‖R − K X‖ <= tolerance · scale[c] instead
+/// (see centred_scale), and the residual reported is relative to it.
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Positions& R,
-                    Positions& X, double tolerance, int max_iterations, BicgstabWorkspace& ws);
+                    Positions& X, double tolerance, int max_iterations, BicgstabWorkspace& ws,
+                    const std::array<double, 3>* scale = nullptr);
+
+/// A size of the system K X = R that does not depend on where the mesh sits: per column,
+/// ‖R − K 1 x̄‖ over the rows not in `fixed` (n flags; may be empty), where x̄ is that column's mean
+/// over the same rows of `X` (the current positions). For a system that moves with its solution
+/// (K X = R gives K (X + 1 t) = R + K 1 t, as eq. 7 does), this is the right-hand side of the
+/// problem centred at the origin, so a tolerance relative to it means the same accuracy for a
+/// mesh at the origin and for the same mesh far from it; ‖R‖ would be dominated by the offset
+/// (and by fixed rows such as a stray vertex far away). A column of zero size takes the largest
+/// of the three (1 if all are 0).
+std::array<double, 3> centred_scale(const SparseMatrixR& K, const Positions& R, const Positions& X,
+                                    const std::vector<unsigned char>& fixed);
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Positions& R,
                     Positions& X, double tolerance, int max_iterations);
 

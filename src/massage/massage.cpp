@@ -262,7 +262,9 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
       X = M.V;
     }
     if (!use_direct) {
-      solve = bicgstab(K, ilu, rhs, X, o.solver_tolerance, o.solver_max_iterations, workspace);
+      const std::array<double, 3> scale = centred_scale(K, rhs, M.V, s.pinned);
+      solve = bicgstab(K, ilu, rhs, X, o.solver_tolerance, o.solver_max_iterations, workspace,
+                       &scale);
       if (!solve.ok) {
         X = M.V;
         use_direct = true;  // the robust path for this iteration

@@ -52,7 +52,7 @@ struct MassageOptions {
   bool lawson = true;          ///< "lawson": update α, β by eq. 5 after each iteration
   double lawson_floor = 1e-8;  ///< "lawson_floor": α, β kept >= this times their mean
   SolverKind solver = SolverKind::Iterative;   ///< "solver": "iterative" | "direct"
-  double solver_tolerance = 1e-9;             ///< "solver_tolerance": relative residual
+  double solver_tolerance = 1e-8;             ///< "solver_tolerance": relative residual
   int solver_max_iterations = 300;             ///< "solver_max_iterations"
   ClosestPointMode closest_points = ClosestPointMode::Local;  ///< "closest_points"
   int walk_max_steps = 16;     ///< "walk_max_steps": local search moves before the exact query

@@ -97,3 +97,48 @@ TEST_CASE("a zero pivot is reported, not divided by", "[solver]") {
   Ilu0 ilu;
   CHECK_FALSE(ilu.factor(K, diagonal_slots(K)));
 }
+
+TEST_CASE("the centred scale does not depend on where the mesh sits", "[solver]") {
+  // K X = R moved by t: K (X + 1t) = R + K1 t. The centred scale (and so the tolerance's meaning
+  // and the iterations BiCGSTAB takes) is the same for both, where ‖R‖ is not.
+  const TriMesh m = make_torus(40, 20, 2.0, 0.5);
+  const SparseMatrixR K = massage_like(m, 0.3, 10.0, 7);
+  Positions X = m.V;
+  Positions R;
+  multiply(K, X, R);
+  const Eigen::RowVector3d t(1000.0, -250.0, 40.0);
+  const Positions X_far = X.rowwise() + t;
+  Positions R_far;
+  multiply(K, X_far, R_far);
+  const std::vector<unsigned char> none;
+  const std::array<double, 3> near = centred_scale(K, R, X, none);
+  const std::array<double, 3> far = centred_scale(K, R_far, X_far, none);
+  for (int c = 0; c < 3; ++c) {
+    INFO("column " << c);
+    CHECK(near[c] > 0.0);
+    CHECK(far[c] == Approx(near[c]).epsilon(1e-6));
+    CHECK(R_far.col(c).norm() > 10.0 * near[c]);  // what the plain criterion would have used
+  }
+  // Solving from the same relative start takes the same iterations and gives the moved solution.
+  Ilu0 ilu;
+  REQUIRE(ilu.factor(K, diagonal_slots(K)));
+  BicgstabWorkspace ws;
+  const Positions start = X + 1e-3 * Positions::Random(X.rows(), 3);
+  Positions Y = start, Y_far = start.rowwise() + t;
+  const SolveStats a = bicgstab(K, ilu, R, Y, 1e-8, 500, ws, &near);
+  const SolveStats b = bicgstab(K, ilu, R_far, Y_far, 1e-8, 500, ws, &far);
+  REQUIRE(a.ok);
+  REQUIRE(b.ok);
+  CHECK(a.iterations == b.iterations);
+  CHECK(a.residual <= 1e-8);
+  CHECK(((Y_far.rowwise() - t) - Y).cwiseAbs().maxCoeff() < 1e-6);
+  CHECK((Y - X).cwiseAbs().maxCoeff() < 1e-5);
+  // Fixed rows take no part: a far-away fixed row leaves the scale of the others alone.
+  std::vector<unsigned char> fixed(X.rows(), 0);
+  fixed[0] = 1;
+  Positions R_fixed = R;
+  R_fixed.row(0) = Eigen::RowVector3d(1e6, 1e6, 1e6);
+  const std::array<double, 3> with_fixed = centred_scale(K, R_fixed, X, fixed);
+  const std::array<double, 3> plain = centred_scale(K, R, X, fixed);
+  for (int c = 0; c < 3; ++c) CHECK(with_fixed[c] == plain[c]);
+}
