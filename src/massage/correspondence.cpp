@@ -15,8 +15,22 @@ int update_correspondences(const SurfaceView& surface, const Positions& points, 
   // Pass 1: the local answers. corr[i] keeps a bound (the best point seen, or none) where the
   // exact query is still needed.
   std::vector<unsigned char> pending(count, 0);
+  // The walks read the frames at random (the crane's triangle order is not spatial): fetch the
+  // start triangle's frame a few queries ahead, and its edge neighbours' too where no bends
+  // spare their tests (M's frames). The answers do not depend on it.
+  constexpr int kAhead = 8;
+  const TrianglePlanes* ahead = exact ? nullptr : surface.planes;
+  const bool neighbours_ahead = ahead && !ahead->has_bends();
   tbb::parallel_for(tbb::blocked_range<int>(0, count, 1024), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i != r.end(); ++i) {
+      if (ahead && i + kAhead < r.end()) {
+        if (const int t = corr[i + kAhead].triangle; t >= 0) {
+          ahead->prefetch(t);
+          if (neighbours_ahead)
+            for (const int u : surface.topology->triangle_neighbours[t])
+              if (u >= 0) ahead->prefetch(u);
+        }
+      }
       const Vec3 p = points.row(i).transpose();
       SurfacePoint& c = corr[i];
       if (c.triangle >= 0) {
