@@ -5,6 +5,7 @@
 #include "geometry/surface_walk.hpp"
 #include "massage/correspondence.hpp"
 #include "massage/massage.hpp"
+#include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/brute_force_closest.hpp"
 
@@ -146,5 +147,20 @@ TEST_CASE("local correspondences are the walks' answers, with or without bends",
   for (int i = 0; i < points.rows(); ++i) {
     CHECK(answers[0][i].triangle == answers[1][i].triangle);
     CHECK((answers[0][i].bary - answers[1][i].bary).norm() == 0.0);
+  }
+}
+
+TEST_CASE("a start triangle out of range is an error, also for the fetching ahead",
+          "[correspondence]") {
+  const Surface s(make_torus(20, 10, 2.0, 0.6));
+  const int m = s.mesh.num_triangles();
+  std::vector<SurfacePoint> corr(60);
+  for (int i = 0; i < 60; ++i) corr[i].triangle = i % m;
+  corr[30].triangle = m + 1000;  // read ahead by the queries before it
+  Positions points(60, 3);
+  for (int i = 0; i < 60; ++i) points.row(i) = s.mesh.V.row(i);
+  for (bool with_planes : {false, true}) {
+    std::vector<SurfacePoint> c = corr;
+    CHECK_THROWS_AS(update_correspondences(s.view(with_planes), points, false, 16, c), InputError);
   }
 }
