@@ -59,7 +59,33 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
   int current = start;
   TrianglePoint here{Vec3::Zero(), Vec3::Zero(), TriangleRegion::Face,
                      std::numeric_limits<double>::infinity()};
-  closer(current, here);
+  // Whether `here` is known to be in the face of `current` without face_settles holding.
+  bool unsettled = false;
+  if (planes) {
+    // Most walks end where they start, inside the face: closer_than's face case and
+    // face_settles, sharing the height, without a step into the loop.
+    const TrianglePlane& f = (*planes)[current];
+    const Vec3 r = p - f.origin;
+    const double beta = r.dot(f.dual1), gamma = r.dot(f.dual2), h = r.dot(f.normal);
+    const double alpha = 1.0 - beta - gamma;
+    if (beta >= 0.0 && gamma >= 0.0 && alpha >= 0.0 && h * h < here.dist2) {
+      here.point = p - h * f.normal;
+      here.bary = Vec3(alpha, beta, gamma);
+      here.dist2 = h * h;
+      if (TrianglePlanes::face_settles(f, h, here.bary)) {
+        out.triangle = current;
+        out.bary = here.bary;
+        out.point = here.point;
+        out.dist2 = here.dist2;
+        return true;
+      }
+      unsettled = true;
+    } else {
+      closer(current, here);
+    }
+  } else {
+    closer(current, here);
+  }
   TrianglePoint best;
   for (int steps = 0;; ++steps) {
     int next = -1;
@@ -77,7 +103,7 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
       // Inside the face: a point just inside a convex edge also projects into the face across
       // it, which may be closer. Trying the three edge neighbours catches that case.
       // The bends of the projection frames can tell that none of them is closer.
-      if (!planes || !planes->face_settles(current, p, here.bary)) {
+      if (!planes || unsettled || !planes->face_settles(current, p, here.bary)) {
         const std::array<int, 3>& across = topo.triangle_neighbours[current];
         for (int e = 0; e < 3; ++e)
           if (across[e] >= 0 && closer(across[e], best)) next = across[e];
@@ -104,6 +130,7 @@ bool walk_closest(const Positions& V, const Triangles& F, const Topology& topo, 
     }
     current = next;
     std::swap(here, best);
+    unsettled = false;
   }
 }
 

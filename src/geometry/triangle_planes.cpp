@@ -62,7 +62,8 @@ void TrianglePlanes::update(const Positions& V, const Triangles& F, const Topolo
       f.bend[0] = f.bend[1] = f.bend[2] = kNaN;
     }
   });
-  if (!topo || topo->num_triangles != m) return;
+  has_bends_ = topo && topo->num_triangles == m;
+  if (!has_bends_) return;
   // Bends: for edge k from a to b, with ê = (b − a)/|b − a|, t's inward direction m = n_t × ê and
   // the neighbour's d = ê × n_u (consistent orientation: the topology gives no neighbour across
   // an edge whose triangles disagree), sin θ = d · n_t, cos θ = −d · m, tan(θ/2) = sin/(1 + cos).

@@ -54,7 +54,18 @@ class TrianglePlanes {
   void update(const Positions& V, const Triangles& F, const Topology* topo = nullptr);
 
   int size() const { return static_cast<int>(planes_.size()); }
+  /// Whether the last update() computed the bends (was given the connectivity).
+  bool has_bends() const { return has_bends_; }
   const TrianglePlane& operator[](int t) const { return planes_[t]; }
+
+  /// Hints the processor to bring triangle t's frame into the cache (for a query a few steps
+  /// ahead: the frames are read at random and a walk is short).
+  void prefetch(int t) const {
+    const char* a = reinterpret_cast<const char*>(&planes_[t]);
+    __builtin_prefetch(a);  // a frame spans up to three cache lines
+    __builtin_prefetch(a + 64);
+    __builtin_prefetch(a + sizeof(TrianglePlane) - 1);
+  }
 
   /// If the projection of p onto triangle t's plane lies in the (closed) triangle, writes the
   /// closest point (region Face, bary = (1 − β − γ, β, γ), point = p − h·normal, dist2 = h²) to
@@ -88,10 +99,12 @@ class TrianglePlanes {
                    TrianglePoint& out) const {
     const TrianglePlane& f = planes_[t];
     const Vec3 r = p - f.origin;
-    const double beta = r.dot(f.dual1), gamma = r.dot(f.dual2), h = r.dot(f.normal);
+    const double h = r.dot(f.normal);
+    // No point of the triangle is closer than its plane (h² + s² >= h², rounded too).
+    if (!(h * h < bound2)) return false;
+    const double beta = r.dot(f.dual1), gamma = r.dot(f.dual2);
     const double alpha = 1.0 - beta - gamma;
     if (beta >= 0.0 && gamma >= 0.0 && alpha >= 0.0) {
-      if (!(h * h < bound2)) return false;
       out.point = p - h * f.normal;
       out.bary = Vec3(alpha, beta, gamma);
       out.region = TriangleRegion::Face;
@@ -115,7 +128,11 @@ class TrianglePlanes {
   /// bends (see above). False when a bend is unknown.
   bool face_settles(int t, const Vec3& p, const Vec3& bary) const {
     const TrianglePlane& f = planes_[t];
-    const double h = (p - f.origin).dot(f.normal);
+    return face_settles(f, (p - f.origin).dot(f.normal), bary);
+  }
+
+  /// face_settles for the frame f and the signed height h = (p − f.origin) · f.normal of p.
+  static bool face_settles(const TrianglePlane& f, double h, const Vec3& bary) {
     for (int k = 0; k < 3; ++k) {
       const double b = f.bend[k];
       if (b * h <= 0.0) continue;  // flat, no neighbour, or bending away from p
@@ -127,6 +144,7 @@ class TrianglePlanes {
 
  private:
   std::vector<TrianglePlane> planes_;
+  bool has_bends_ = false;
 };
 
 }  // namespace sm

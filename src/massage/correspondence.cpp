@@ -15,21 +15,52 @@ int update_correspondences(const SurfaceView& surface, const Positions& points, 
   // Pass 1: the local answers. corr[i] keeps a bound (the best point seen, or none) where the
   // exact query is still needed.
   std::vector<unsigned char> pending(count, 0);
+  // The queries come in vertex order, not triangle order (the crane's is not spatial), so the
+  // walks' reads are random: fetch them ahead, in two stages. 2·kAhead queries ahead, the start
+  // triangle's corners (a row of F) and neighbours (of the topology); kAhead ahead, its frame and
+  // corner positions, for the full test when the query is not over its face, and its edge
+  // neighbours' frames where no bends spare their tests (M's frames). Answers do not depend on it.
+  constexpr int kAhead = 8;
+  const Positions& V = *surface.V;
+  const Triangles& F = *surface.F;
+  const auto& across = surface.topology->triangle_neighbours;
+  const int m = static_cast<int>(F.rows());
+  const TrianglePlanes* ahead =
+      !exact && surface.planes && surface.planes->size() == m && across.size() == size_t(m)
+          ? surface.planes
+          : nullptr;  // (a mismatch throws in the walk)
+  const bool neighbours_ahead = ahead && !ahead->has_bends();
+  auto start_of = [&](int i) {  // the triangle a walk will start on, -1 for none or a bad one
+    const int t = corr[i].triangle;
+    return t < m ? t : -1;
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, count, 1024), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i != r.end(); ++i) {
+      if (ahead && i + 2 * kAhead < r.end()) {
+        if (const int t = start_of(i + 2 * kAhead); t >= 0) {
+          __builtin_prefetch(&F(t, 0));
+          __builtin_prefetch(&across[t]);
+        }
+      }
+      if (ahead && i + kAhead < r.end()) {
+        if (const int t = start_of(i + kAhead); t >= 0) {
+          ahead->prefetch(t);
+          for (int k = 0; k < 3; ++k) __builtin_prefetch(&V(F(t, k), 0));
+          if (neighbours_ahead)
+            for (const int u : across[t])
+              if (u >= 0) ahead->prefetch(u);
+        }
+      }
       const Vec3 p = points.row(i).transpose();
       SurfacePoint& c = corr[i];
       if (c.triangle >= 0) {
         if (!exact) {
-          if (walk_closest(*surface.V, *surface.F, *surface.topology, p, c.triangle, max_steps, c,
-                           surface.planes))
+          if (walk_closest(V, F, *surface.topology, p, c.triangle, max_steps, c, surface.planes))
             continue;
         } else {
           // The full test (not the projection frames): a query on a corner gets distance 0
           // exactly, which needs no BVH query at all.
           const int t = c.triangle;
-          const Positions& V = *surface.V;
-          const Triangles& F = *surface.F;
           const TrianglePoint tp =
               closest_point_on_triangle(p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(),
                                         V.row(F(t, 2)).transpose());

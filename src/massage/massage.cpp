@@ -293,8 +293,9 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
 
     t0 = Clock::now();
     bvh_m_current = false;
-    planes_m.update(M.V, s.F);
     it.exact_queries = update_correspondences(on_n, M.V, exact, o.walk_max_steps, v_hat);
+    // M's frames just before the walks that read them, while they are still in the cache.
+    planes_m.update(M.V, s.F);
     it.exact_queries += update_correspondences(on_m, W, exact, o.walk_max_steps, w_hat, refit_m);
     it.seconds_closest = seconds_since(t0);
 

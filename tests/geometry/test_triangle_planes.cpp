@@ -183,3 +183,55 @@ TEST_CASE("a face that settles has no closer edge neighbour", "[planes]") {
     CHECK(settled > count / 2);
   }
 }
+
+TEST_CASE("bends only spare tests: a walk answers the same with or without them",
+          "[planes][walk]") {
+  // The walk's shortcuts (the start face settling, face_settles later on) may skip neighbours
+  // only when they cannot be closer: the answers must be bit-identical to the walk that tries
+  // them all, also when it runs out of steps. Convex and concave edges, queries above and below.
+  TriMesh bumpy = make_icosphere(3, 1.0);
+  for (int v = 0; v < bumpy.num_vertices(); ++v) {
+    const Vec3 p = bumpy.vertex(v);
+    bumpy.V.row(v) *= 1.0 + 0.2 * std::sin(6.0 * p.x()) * std::cos(4.0 * p.z());
+  }
+  TriMesh folded = make_grid(12, 12, 1.0, 1.0);
+  for (int v = 0; v < folded.num_vertices(); ++v)
+    folded.V(v, 2) = 0.6 * std::abs(folded.V(v, 0) - 0.5) - 0.4 * std::abs(folded.V(v, 1) - 0.5);
+  for (const TriMesh& mesh :
+       {bumpy, folded, make_torus(40, 20, 2.0, 0.6), make_box(4, 1.0, 2.0, 0.5)}) {
+    const Topology topo = build_topology(mesh);
+    const TrianglePlanes bends(mesh.V, mesh.F, &topo), none(mesh.V, mesh.F);
+    REQUIRE(bends.has_bends());
+    REQUIRE_FALSE(none.has_bends());
+    const double h = mean_edge_length(mesh);
+    std::mt19937 rng(12);
+    std::uniform_int_distribution<int> tri(0, mesh.num_triangles() - 1), edge(0, 2);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    int settled_at_start = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const int t = tri(rng);
+      double a = u01(rng), b = u01(rng);
+      if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+      const Vec3 foot = (1.0 - a - b) * mesh.vertex(mesh.F(t, 0)) + a * mesh.vertex(mesh.F(t, 1)) +
+                        b * mesh.vertex(mesh.F(t, 2));
+      const Vec3 p = foot + h * (0.3 * random_vec(rng, 1.0) + (u01(rng) - 0.5) * bends[t].normal);
+      int start = t;  // mostly the triangle below, else up to three edges away
+      for (int hop = 0; hop < i % 4; ++hop)
+        if (const int u = topo.triangle_neighbours[start][edge(rng)]; u >= 0) start = u;
+      const int steps = i % 5 == 4 ? 1 : 16;
+      SurfacePoint with, without;
+      const bool a_ok = walk_closest(mesh.V, mesh.F, topo, p, start, steps, with, &bends);
+      const bool b_ok = walk_closest(mesh.V, mesh.F, topo, p, start, steps, without, &none);
+      REQUIRE(a_ok == b_ok);
+      REQUIRE(with.triangle == without.triangle);
+      CHECK(with.dist2 == without.dist2);
+      CHECK((with.point - without.point).norm() == 0.0);
+      CHECK((with.bary - without.bary).norm() == 0.0);
+      TrianglePoint face;
+      if (with.triangle == start && bends.closest_in_face(start, p, face) &&
+          bends.face_settles(start, p, face.bary))
+        ++settled_at_start;
+    }
+    CHECK(settled_at_start > 300);
+  }
+}

@@ -2,8 +2,10 @@
 
 #include <random>
 
+#include "geometry/surface_walk.hpp"
 #include "massage/correspondence.hpp"
 #include "massage/massage.hpp"
+#include "mesh/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/brute_force_closest.hpp"
 
@@ -106,5 +108,59 @@ TEST_CASE("a reference refitted from the template's tree answers like a freshly 
     const Vec3 p(u(rng), u(rng), 0.5 * u(rng));
     CHECK(refitted.bvh().closest(p).dist2 == fresh.bvh().closest(p).dist2);
     CHECK(ignored.bvh().closest(p).dist2 == Approx(brute_force_dist2(other, p)).margin(1e-13));
+  }
+}
+
+TEST_CASE("local correspondences are the walks' answers, with or without bends",
+          "[correspondence]") {
+  // update_correspondences fetches frames ahead of the walks; the answers must be exactly those
+  // of walk_closest from the same starts, and the same whatever the frames know.
+  const Surface s(make_torus(36, 18, 2.0, 0.6));
+  const TrianglePlanes bends(s.mesh.V, s.mesh.F, &s.topo);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  Positions points = s.mesh.V;
+  for (int i = 0; i < points.rows(); ++i) points.row(i) += Vec3(u(rng), u(rng), u(rng)).transpose();
+  std::vector<SurfacePoint> starts(points.rows());
+  std::uniform_int_distribution<int> pick(0, 5);
+  for (int v = 0; v < points.rows(); ++v) {
+    const int b = s.topo.vertex_triangles.begin(v);
+    starts[v].triangle =
+        s.topo.vertex_triangles.data[b + pick(rng) % s.topo.vertex_triangles.size(v)];
+  }
+  std::vector<std::vector<SurfacePoint>> answers;
+  for (const TrianglePlanes* planes : {&s.planes, &bends}) {
+    SurfaceView view = s.view(true);
+    view.planes = planes;
+    std::vector<SurfacePoint> corr = starts;
+    CHECK(update_correspondences(view, points, false, 16, corr) == 0);
+    for (int i = 0; i < points.rows(); ++i) {
+      SurfacePoint walked;
+      REQUIRE(walk_closest(s.mesh.V, s.mesh.F, s.topo, points.row(i).transpose(),
+                           starts[i].triangle, 16, walked, planes));
+      CHECK(corr[i].triangle == walked.triangle);
+      CHECK(corr[i].dist2 == walked.dist2);
+      CHECK((corr[i].point - walked.point).norm() == 0.0);
+    }
+    answers.push_back(corr);
+  }
+  for (int i = 0; i < points.rows(); ++i) {
+    CHECK(answers[0][i].triangle == answers[1][i].triangle);
+    CHECK((answers[0][i].bary - answers[1][i].bary).norm() == 0.0);
+  }
+}
+
+TEST_CASE("a start triangle out of range is an error, also for the fetching ahead",
+          "[correspondence]") {
+  const Surface s(make_torus(20, 10, 2.0, 0.6));
+  const int m = s.mesh.num_triangles();
+  std::vector<SurfacePoint> corr(60);
+  for (int i = 0; i < 60; ++i) corr[i].triangle = i % m;
+  corr[30].triangle = m + 1000;  // read ahead by the queries before it
+  Positions points(60, 3);
+  for (int i = 0; i < 60; ++i) points.row(i) = s.mesh.V.row(i);
+  for (bool with_planes : {false, true}) {
+    std::vector<SurfacePoint> c = corr;
+    CHECK_THROWS_AS(update_correspondences(s.view(with_planes), points, false, 16, c), InputError);
   }
 }
