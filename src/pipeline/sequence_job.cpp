@@ -225,13 +225,14 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       V = result.V;
       const TriMesh output{V, F};
       const Topology& topology = plan.massager->topology();
-      s.out_to_in =
-          one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(), &topology);
+      const DistanceLayout* layout = plan.distance_layout.get();
+      s.out_to_in = one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(),
+                                       &topology, layout);
       TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
       output_bvh.refit(V);
       const TrianglePlanes output_planes(V, F, &topology);
-      s.in_to_out =
-          one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes,
+                                       &topology, layout);
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
@@ -340,6 +341,8 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
   }
   plan.massager =
       std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
+  plan.distance_layout =
+      std::make_shared<const DistanceLayout>(plan.templ.F, plan.templ.num_vertices());
   plan.config_hash = frame_config_hash(c);
   plan.template_hash = template_hash(plan.templ);
 
