@@ -67,13 +67,13 @@ DistanceOptions vertices_only(bool corresponding) {
 // The first is the reference: the finest sampling (half the spacing of the job's default before
 // issue 3's measures key, 0.25, which is the second).
 std::vector<Variant> distance_variants() {
-  return {{"0.125, corr.", sampled(0.125, true)},   {"0.25", sampled(0.25, false)},
-          {"0.25, corr.", sampled(0.25, true)},     {"0.35, corr.", sampled(0.35, true)},
-          {"0.5, corr.", sampled(0.5, true)},       {"0.5", sampled(0.5, false)},
-          {"0.75, corr.", sampled(0.75, true)},     {"1.0, corr.", sampled(1.0, true)},
-          {"vertices, corr.", vertices_only(true)}, {"vertices", vertices_only(false)},
-          {"adapt. 0.125/0.5", adaptive(0.125, 0.5)},  {"adapt. 0.125/0.7", adaptive(0.125, 0.7)},
-          {"adapt. 0.125/0.6", adaptive(0.125, 0.6)},  {"adapt. 0.125/0.4", adaptive(0.125, 0.4)},
+  return {{"0.125, corr.", sampled(0.125, true)},     {"0.25", sampled(0.25, false)},
+          {"0.25, corr.", sampled(0.25, true)},       {"0.35, corr.", sampled(0.35, true)},
+          {"0.5, corr.", sampled(0.5, true)},         {"0.5", sampled(0.5, false)},
+          {"0.75, corr.", sampled(0.75, true)},       {"1.0, corr.", sampled(1.0, true)},
+          {"vertices, corr.", vertices_only(true)},   {"vertices", vertices_only(false)},
+          {"adapt. 0.125/0.5", adaptive(0.125, 0.5)}, {"adapt. 0.125/0.7", adaptive(0.125, 0.7)},
+          {"adapt. 0.125/0.6", adaptive(0.125, 0.6)}, {"adapt. 0.125/0.4", adaptive(0.125, 0.4)},
           {"adapt. 0.25/0.5", adaptive(0.25, 0.5)}};
 }
 
@@ -86,16 +86,16 @@ struct FramePair {
 
 FramePair measure(const TriMesh& input, const Reference& reference, const Positions& V,
                   const Topology& topology, const DistanceOptions& options,
-                  const DistanceLayout* layout = nullptr) {
+                  const DistanceLayout* layout = nullptr, DistanceWorkspace* work = nullptr) {
   FramePair d;
   const TriMesh output{V, input.F};
-  d.out_to_in = one_sided_distance(output, reference.bvh(), options, &reference.planes(),
-                                   &topology, layout);
+  d.out_to_in = one_sided_distance(output, reference.bvh(), options, &reference.planes(), &topology,
+                                   layout, work);
   TriangleBvh output_bvh = reference.bvh();
   output_bvh.refit(V);
   const TrianglePlanes output_planes(V, input.F, &topology);
   d.in_to_out =
-      one_sided_distance(input, output_bvh, options, &output_planes, &topology, layout);
+      one_sided_distance(input, output_bvh, options, &output_planes, &topology, layout, work);
   return d;
 }
 
@@ -153,6 +153,7 @@ void spacing_table(const fs::path& dir) {
   std::vector<double> seconds(nv, 0.0), samples(nv, 0.0), refined(nv, 0.0);
   // Built once per connectivity, as the sequence job does.
   const DistanceLayout layout(seq.templ.F, seq.templ.num_vertices());
+  DistanceWorkspace work;
   // Per variant: relative deviations of max and RMS from the reference, both directions.
   std::vector<double> max_dev(nv, 0.0), max_dev_sum(nv, 0.0), rms_dev(nv, 0.0),
       rms_dev_sum(nv, 0.0), max_low(nv, 0.0), area_dev(nv, 0.0), area_dev_sum(nv, 0.0);
@@ -168,8 +169,8 @@ void spacing_table(const fs::path& dir) {
     std::vector<FramePair> pairs(nv);
     for (size_t v = 0; v < nv; ++v) {
       const double t0 = thread_seconds();
-      pairs[v] =
-          measure(input, reference, result.V, massager.topology(), variants[v].options, &layout);
+      pairs[v] = measure(input, reference, result.V, massager.topology(), variants[v].options,
+                         &layout, &work);
       seconds[v] += thread_seconds() - t0;
       samples[v] += double(pairs[v].out_to_in.samples + pairs[v].in_to_out.samples);
       refined[v] += double(pairs[v].out_to_in.refined + pairs[v].in_to_out.refined);
@@ -211,17 +212,15 @@ void spacing_table(const fs::path& dir) {
       "(%s) over %d frames x 2 directions:\n"
       "  %-16s %9s %10s %8s %9s | %-22s | %-22s | %-22s\n",
       variants[0].name, count, "sampling", "ms/frame", "samples", "refined", "speed-up",
-      "max: mean |dev| (worst)", "rms: mean |dev| (worst)",
-      "rms vs area-weighted ref.");
+      "max: mean |dev| (worst)", "rms: mean |dev| (worst)", "rms vs area-weighted ref.");
   for (size_t v = 0; v < nv; ++v) {
     const double n = 2.0 * count;
     std::printf(
         "  %-16s %9.1f %10.0f %8.0f %8.1fx | %8.2f%% (%6.2f%%)    | %8.3f%% (%6.3f%%)    | "
         "%8.3f%% (%6.3f%%)\n",
-                variants[v].name, 1e3 * seconds[v] / count, samples[v] / count, refined[v] / count,
-                seconds[0] / seconds[v], 100 * max_dev_sum[v] / n, 100 * max_dev[v],
-                100 * rms_dev_sum[v] / n, 100 * rms_dev[v], 100 * area_dev_sum[v] / n,
-                100 * area_dev[v]);
+        variants[v].name, 1e3 * seconds[v] / count, samples[v] / count, refined[v] / count,
+        seconds[0] / seconds[v], 100 * max_dev_sum[v] / n, 100 * max_dev[v],
+        100 * rms_dev_sum[v] / n, 100 * rms_dev[v], 100 * area_dev_sum[v] / n, 100 * area_dev[v]);
   }
   std::printf("  (the worst max deviation below the reference: ");
   for (size_t v = 1; v < nv; ++v)

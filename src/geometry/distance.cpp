@@ -163,14 +163,15 @@ void coarse_samples(int count, std::vector<double>& out, const ExactQuery& query
 
 DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
                                 const DistanceLayout& layout, const DistanceOptions& options,
-                                int triangles_b) {
+                                int triangles_b, DistanceWorkspace& work) {
   const int m = A.num_triangles();
   const bool corresponding = options.corresponding_triangles;
   auto first_try = [&](int t, int& hint) {
     if (corresponding && t < triangles_b) hint = t;
   };
   const std::vector<int>& vertex_owner = layout.vertex_owner();
-  std::vector<double> dv, dc;
+  std::vector<double>& dv = work.vertex_distance;
+  std::vector<double>& dc = work.centroid_distance;
   coarse_samples(A.num_vertices(), dv, query, [&](int v, Vec3& q, int& hint) {
     if (vertex_owner[v] < 0) return false;  // in no triangle: not on A's surface
     q = A.vertex(v);
@@ -186,7 +187,8 @@ DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
   // The rule of degree 2 on every triangle (1/12 at each corner, 3/4 at the centroid), weighted
   // by the triangle's area; the triangles count alike if they are all degenerate.
   DistanceStats stats;
-  std::vector<double> triangle_max(m);
+  std::vector<double>& triangle_max = work.triangle_max;
+  triangle_max.resize(m);
   double area = 0.0, sum = 0.0, sum2 = 0.0, plain = 0.0, plain2 = 0.0;
   for (int t = 0; t < m; ++t) {
     const double a = dv[A.F(t, 0)], b = dv[A.F(t, 1)], c = dv[A.F(t, 2)], d = dc[t];
@@ -217,29 +219,27 @@ DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
   if (!(options.sample_edges || options.sample_faces)) return stats;
   const double h = options.spacing * layout.mean_edge_length(A.V);
   const unsigned edges = options.sample_edges ? 0x38u : 0u;
-  std::vector<int> refine;
-  std::vector<long> count;
+  std::vector<int>& refine = work.refine;
+  std::vector<long>& count = work.count;
   for (const double spacing : {2.0 * h, h}) {
     const double threshold = options.refine_above * stats.max;
     refine.clear();
     for (int t = 0; t < m; ++t)
       if (triangle_max[t] >= threshold && triangle_max[t] > 0.0) refine.push_back(t);
     count.assign(refine.size(), 0);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, refine.size(), 16),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                        for (size_t i = r.begin(); i != r.end(); ++i) {
-                          const int t = refine[i];
-                          const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)),
-                                             A.vertex(A.F(t, 2))};
-                          int hint = corresponding && t < triangles_b ? t : -1;
-                          double& most = triangle_max[t];
-                          sample_triangle(p, edges, options.sample_faces, false, spacing,
-                                          [&](const Vec3& q) {
-                                            most = std::max(most, std::sqrt(query(q, hint)));
-                                            ++count[i];
-                                          });
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, refine.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+          for (size_t i = r.begin(); i != r.end(); ++i) {
+            const int t = refine[i];
+            const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
+            int hint = corresponding && t < triangles_b ? t : -1;
+            double& most = triangle_max[t];
+            sample_triangle(p, edges, options.sample_faces, false, spacing, [&](const Vec3& q) {
+              most = std::max(most, std::sqrt(query(q, hint)));
+              ++count[i];
+            });
+          }
+        });
     for (size_t i = 0; i < refine.size(); ++i) {
       stats.samples += count[i];
       stats.max = std::max(stats.max, triangle_max[refine[i]]);
@@ -253,7 +253,8 @@ DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
 
 DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
                                  const DistanceOptions& options, const TrianglePlanes* planes_b,
-                                 const Topology* topology_b, const DistanceLayout* layout) {
+                                 const Topology* topology_b, const DistanceLayout* layout,
+                                 DistanceWorkspace* work) {
   validate_mesh(A, "one_sided_distance (A)");
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
     std::ostringstream msg;
@@ -275,8 +276,10 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
     own_planes.update(VB, FB, topology_b);
     planes_b = &own_planes;
   }
-  const TriangleGrid grid(VB, FB, *planes_b, cell_size(VB, FB), topology_b);
-  const ExactQuery query{grid, B};
+  DistanceWorkspace own_work;
+  if (!work) work = &own_work;
+  work->grid.build(VB, FB, *planes_b, cell_size(VB, FB), topology_b);
+  const ExactQuery query{work->grid, B};
 
   DistanceLayout own_layout;
   if (!layout || !layout->fits(A.F, A.num_vertices())) {
@@ -285,7 +288,7 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   }
   const int triangles_b = static_cast<int>(FB.rows());
   DistanceStats stats = options.adaptive
-                            ? adaptive_distance(A, query, *layout, options, triangles_b)
+                            ? adaptive_distance(A, query, *layout, options, triangles_b, *work)
                             : uniform_distance(A, query, *layout, options, triangles_b);
 
   Eigen::RowVector3d lo = A.V.colwise().minCoeff(), hi = A.V.colwise().maxCoeff();

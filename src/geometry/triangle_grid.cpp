@@ -18,18 +18,20 @@ constexpr int kChunk = 64;  // boxes tested per SIMD pass
 
 }  // namespace
 
-TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes,
-                           double cell, const Topology* topo)
-    : V_(&V),
-      F_(&F),
-      planes_(&planes),
-      topo_(topo && topo->num_triangles == F.rows() ? topo : nullptr) {
+void TriangleGrid::build(const Positions& V, const Triangles& F, const TrianglePlanes& planes,
+                         double cell, const Topology* topo) {
   const int m = static_cast<int>(F.rows());
   if (planes.size() != m || !(cell > 0.0) || !std::isfinite(cell)) {
     std::ostringstream msg;
     msg << "TriangleGrid: " << planes.size() << " frames for " << m << " triangles, cell " << cell;
     throw InputError(msg.str());
   }
+  V_ = &V;
+  F_ = &F;
+  planes_ = &planes;
+  topo_ = topo && topo->num_triangles == F.rows() ? topo : nullptr;
+  cells_.clear();
+  big_.clear();
   if (m == 0) return;
   Eigen::AlignedBox3d box;
   for (int t = 0; t < m; ++t)
@@ -50,7 +52,8 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
   const long num_cells = long(dims_[0]) * dims_[1] * dims_[2];
 
   // Cell ranges of every triangle's box; counting sort into CSR, triangles in index order.
-  std::vector<std::array<int, 6>> range(m);
+  std::vector<std::array<int, 6>>& range = range_;
+  range.resize(m);
   cells_.assign(num_cells + 1, 0);
   for (int t = 0; t < m; ++t) {
     Eigen::AlignedBox3d tb;
@@ -76,7 +79,8 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
   const int entries = cells_[num_cells];
   triangle_.resize(entries);
   for (std::vector<float>& b : box_) b.resize(entries);
-  std::vector<int> fill(cells_.begin(), cells_.end() - 1);
+  std::vector<int>& fill = fill_;
+  fill.assign(cells_.begin(), cells_.end() - 1);
   for (int t = 0; t < m; ++t) {
     if (range[t][0] < 0) continue;
     float centre[3], half[3];  // [centre − half, centre + half] contains the box

@@ -70,11 +70,12 @@ TEST_CASE("adaptive distance: the maximum is the dense sampling's", "[distance]"
   const TriMesh plane = make_grid(30, 30, 3.0, 3.0);
   TriMesh bump = plane;
   for (int i = 0; i < bump.num_vertices(); ++i)
-    bump.V(i, 2) = 0.05 * std::exp(-(std::pow(bump.V(i, 0) - 1.33, 2) +
-                                     std::pow(bump.V(i, 1) - 1.71, 2)) / 0.02);
-  const std::pair<const TriMesh*, const TriMesh*> pairs[] = {
-      {&coarse, &fine}, {&fine, &coarse}, {&torus, &noisy},
-      {&noisy, &torus}, {&plane, &bump},  {&bump, &plane}};
+    bump.V(i, 2) =
+        0.05 *
+        std::exp(-(std::pow(bump.V(i, 0) - 1.33, 2) + std::pow(bump.V(i, 1) - 1.71, 2)) / 0.02);
+  const std::pair<const TriMesh*, const TriMesh*> pairs[] = {{&coarse, &fine}, {&fine, &coarse},
+                                                             {&torus, &noisy}, {&noisy, &torus},
+                                                             {&plane, &bump},  {&bump, &plane}};
   for (const auto& [a, b] : pairs) {
     const TriangleBvh bvh(*b);
     for (double spacing : {0.125, 0.25}) {
@@ -135,8 +136,8 @@ TEST_CASE("adaptive distance: identical meshes, degenerate meshes, bad options",
   // Every triangle degenerate (no area): the triangles count alike.
   TriMesh flat = make_grid(3, 3, 1.0, 1.0);
   flat.V.col(1).setZero();
-  const DistanceStats d = one_sided_distance(flat, TriangleBvh(tilted_plane(0.5, 0.0)),
-                                             adaptive(0.25));
+  const DistanceStats d =
+      one_sided_distance(flat, TriangleBvh(tilted_plane(0.5, 0.0)), adaptive(0.25));
   CHECK(std::isfinite(d.rms));
   CHECK(d.rms == Approx(0.5).epsilon(1e-12));
   DistanceOptions o = adaptive(0.25, 1.5);

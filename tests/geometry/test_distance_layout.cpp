@@ -27,7 +27,8 @@ TEST_CASE("distance layout: every vertex and edge owned once, by its first trian
         CHECK(owns_edge == new_edge);
         owned_edges += owns_edge;
         if (first[a] < 0) first[a] = t;
-        CHECK(bool(layout.owns()[t] & (1u << k)) == (first[a] == t && layout.vertex_owner()[a] == t));
+        CHECK(bool(layout.owns()[t] & (1u << k)) ==
+              (first[a] == t && layout.vertex_owner()[a] == t));
       }
     CHECK(layout.vertex_owner() == first);
     CHECK(layout.num_edges() == static_cast<int>(edges.size()));
@@ -38,8 +39,10 @@ TEST_CASE("distance layout: every vertex and edge owned once, by its first trian
   }
 }
 
-TEST_CASE("distance layout given or built: the same distances; another mesh's is not used",
-          "[distance]") {
+TEST_CASE(
+    "distance layout and workspace given or not: the same distances; another mesh's "
+    "layout is not used",
+    "[distance]") {
   const TriMesh a = make_torus(30, 12, 2.0, 0.5);
   TriMesh b = a;
   for (int i = 0; i < b.num_vertices(); ++i)
@@ -48,16 +51,27 @@ TEST_CASE("distance layout given or built: the same distances; another mesh's is
   const DistanceLayout layout(a.F, a.num_vertices());
   const TriMesh other = make_icosphere(2, 1.0);
   const DistanceLayout wrong(other.F, other.num_vertices());
+  DistanceWorkspace work;  // reused across meshes and options
   for (bool adaptive : {false, true}) {
     DistanceOptions o;
     o.adaptive = adaptive;
     const DistanceStats built = one_sided_distance(a, bvh, o);
     for (const DistanceLayout* given : {&layout, &wrong}) {
-      const DistanceStats d = one_sided_distance(a, bvh, o, nullptr, nullptr, given);
-      CHECK(d.samples == built.samples);
-      CHECK(d.max == built.max);
-      CHECK(d.mean == built.mean);
-      CHECK(d.rms == built.rms);
+      for (DistanceWorkspace* w : {static_cast<DistanceWorkspace*>(nullptr), &work}) {
+        const DistanceStats d = one_sided_distance(a, bvh, o, nullptr, nullptr, given, w);
+        CHECK(d.samples == built.samples);
+        CHECK(d.refined == built.refined);
+        CHECK(d.max == built.max);
+        CHECK(d.mean == built.mean);
+        CHECK(d.rms == built.rms);
+      }
+      // The workspace, used for another mesh in between, still gives the same.
+      const DistanceStats x =
+          one_sided_distance(other, TriangleBvh(b), o, nullptr, nullptr, nullptr, &work);
+      const DistanceStats y = one_sided_distance(other, TriangleBvh(b), o);
+      CHECK(x.samples == y.samples);
+      CHECK(x.max == y.max);
+      CHECK(x.rms == y.rms);
     }
   }
 }
