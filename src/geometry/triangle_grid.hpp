@@ -61,8 +61,9 @@ class TriangleGrid {
   std::vector<float> box_[6];
   double margin_ = 0.0;   ///< bound on the float box test's rounding error
   std::vector<int> big_;  ///< triangles tested by every query
-  // Scratch of build(): each triangle's cell range, the CSR fill cursors.
+  // Scratch of build(): each triangle's cell range and float box, the CSR fill cursors.
   std::vector<std::array<int, 6>> range_;
+  std::vector<std::array<float, 6>> boxes_;
   std::vector<int> fill_;
 };
 
