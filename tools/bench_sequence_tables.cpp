@@ -4,8 +4,11 @@
 // iteration count of the row), one thread, timed in CPU time of the thread.
 //
 //  * spacing_table: the distances of summary.csv (output frame to input frame and back) with
-//    each sampling of distance_variants(), against the reference sampling (the first variant):
-//    cost per frame, samples, and how far the sampled max and RMS land from the reference's.
+//    each sampling of distance_variants() (uniform spacings, vertices only, adaptive with several
+//    spacings and refine_above), against the reference sampling (the first variant): cost per
+//    frame, samples, refined triangles, and how far the sampled max and RMS land from the
+//    reference's; and the RMS against the area integral (the adaptive rule on every triangle cut
+//    into 16), which the adaptive RMS estimates.
 //  * iterations_table: shear after (eq. 8: mean, p95 and max per frame), the distances (at the
 //    reference sampling) and the folded triangles per outer iteration count.
 #include <time.h>

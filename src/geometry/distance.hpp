@@ -9,6 +9,8 @@
 
 namespace sm {
 
+/// The defaults are the uniform sampling of the mesh jobs; the sequence job's "measures" default
+/// to adaptive sampling at spacing 0.125 (default_sequence_measures in io/config.hpp).
 struct DistanceOptions {
   /// Target spacing of the samples on A, as a fraction of A's mean edge length (> 0). The default
   /// gives about 8 samples per triangle on a regular mesh (Metro's default is 10 per face).
@@ -20,7 +22,9 @@ struct DistanceOptions {
   /// (1/12 of the area at each corner, 3/4 at the centroid). Then, in two levels, at twice
   /// `spacing` and at `spacing`, the triangles whose samples so far reach `refine_above` times
   /// the largest sample so far are sampled (all three edges and the lattice, as above); the
-  /// maximum is taken over every sample.
+  /// maximum is taken over every sample (DistanceStats::samples counts them all). Every
+  /// sample's distance is exact, and the triangles refined depend on those distances alone, so
+  /// the result does not depend on the number of threads either.
   /// Off: every triangle is sampled at `spacing`; mean and RMS are those of the samples.
   bool adaptive = false;
   /// In [0, 1]: with `adaptive`, the fraction of the largest sample so far that a triangle's
@@ -28,7 +32,8 @@ struct DistanceOptions {
   double refine_above = 0.5;
   /// A's triangle t and B's triangle t are the same triangle moved (a frame and its corrected
   /// output share their connectivity): the first sample of A's triangle t tries B's triangle t
-  /// first (the others, as always, the previous sample's closest triangle). Only where the
+  /// first (the others, as always, the previous sample's closest triangle; with `adaptive`, a
+  /// vertex tries the first triangle using it, a centroid its own triangle). Only where the
   /// search starts: the distances stay exact.
   bool corresponding_triangles = false;
 };
