@@ -175,7 +175,7 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const MassageOptions options;
   const Massager massager(templ, options, "template");
   const DistanceLayout layout(templ.F, templ.num_vertices());  // as the job's plan
-  DistanceWorkspace work;                                     // as the job's pool
+  DistanceWorkspace work;                                      // as the job's pool
   const double setup = thread_seconds() - t_setup;
   double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
   int iterations = 0, count = 0;
@@ -205,9 +205,11 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const DistanceOptions sampling = default_sequence_measures();  // the job's "measures"
     const DistanceStats out_to_in = one_sided_distance(
         output, reference.bvh(), sampling, &reference.planes(), &topology, &layout, &work);
-    TriangleBvh output_bvh = reference.bvh();
+    TriangleBvh& output_bvh = work.bvh;  // as the job does
+    output_bvh = reference.bvh();
     output_bvh.refit(result.V);
-    const TrianglePlanes output_planes(result.V, templ.F, &topology);
+    TrianglePlanes& output_planes = work.planes;
+    output_planes.update(result.V, templ.F, &topology);
     const DistanceStats in_to_out = one_sided_distance(file.mesh, output_bvh, sampling,
                                                        &output_planes, &topology, &layout, &work);
     measure += (thread_seconds() - t0);

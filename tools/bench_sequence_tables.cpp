@@ -94,11 +94,12 @@ FramePair measure(const TriMesh& input, const Reference& reference, const Positi
   const TriMesh output{V, input.F};
   d.out_to_in = one_sided_distance(output, reference.bvh(), options, &reference.planes(), &topology,
                                    layout, work);
-  TriangleBvh output_bvh = reference.bvh();
-  output_bvh.refit(V);
-  const TrianglePlanes output_planes(V, input.F, &topology);
-  d.in_to_out =
-      one_sided_distance(input, output_bvh, options, &output_planes, &topology, layout, work);
+  DistanceWorkspace own;  // as the job does: the output's BVH and frames in the workspace
+  DistanceWorkspace& w = work ? *work : own;
+  w.bvh = reference.bvh();
+  w.bvh.refit(V);
+  w.planes.update(V, input.F, &topology);
+  d.in_to_out = one_sided_distance(input, w.bvh, options, &w.planes, &topology, layout, &w);
   return d;
 }
 

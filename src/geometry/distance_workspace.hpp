@@ -6,7 +6,9 @@
 #include <mutex>
 #include <vector>
 
+#include "geometry/bvh.hpp"
 #include "geometry/triangle_grid.hpp"
+#include "geometry/triangle_planes.hpp"
 
 namespace sm {
 
@@ -16,6 +18,11 @@ struct DistanceWorkspace {
   std::vector<double> vertex_distance, centroid_distance, triangle_max;
   std::vector<int> refine;
   std::vector<long> count;
+  /// Not used by one_sided_distance: room for the caller's B when that is a moved copy (the
+  /// sequence job's output frame: the input's BVH refitted, its projection frames), kept for the
+  /// same reason (copy-assigning a BVH of the same size reuses these arrays).
+  TriangleBvh bvh;
+  TrianglePlanes planes;
 };
 
 /// Hands out workspaces that no other holder uses, and keeps them when they are given back:

@@ -700,7 +700,8 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
 
   read_massage(Section(root.get("massage"), "massage", kMassageKeys), c.massage);
   read_sequence_measures(
-      Section(root.get("measures"), "measures", {"spacing", "sample_edges", "sample_faces", "adaptive", "refine_above"}),
+      Section(root.get("measures"), "measures",
+              {"spacing", "sample_edges", "sample_faces", "adaptive", "refine_above"}),
       c.measures);
   read(root, "threads", c.threads, 0, 4096);
   read(root, "frames_in_flight", c.frames_in_flight, 0, 1000000);

@@ -228,14 +228,17 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       const DistanceLayout* layout = plan.distance_layout.get();
       std::optional<DistanceWorkspaces::Lease> lease;
       if (plan.distance_workspaces) lease.emplace(plan.distance_workspaces->acquire());
-      DistanceWorkspace* work = lease ? lease->get() : nullptr;
+      DistanceWorkspace own;
+      DistanceWorkspace* work = lease ? lease->get() : &own;
       s.out_to_in = one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(),
                                        &topology, layout, work);
-      TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
+      TriangleBvh& output_bvh = work->bvh;
+      output_bvh = reference->bvh();  // same triangles: refit, no rebuild
       output_bvh.refit(V);
-      const TrianglePlanes output_planes(V, F, &topology);
-      s.in_to_out = one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes,
-                                       &topology, layout, work);
+      TrianglePlanes& output_planes = work->planes;
+      output_planes.update(V, F, &topology);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology,
+                                       layout, work);
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);

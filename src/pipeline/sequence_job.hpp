@@ -80,8 +80,8 @@ struct SequencePlan {
   std::shared_ptr<const DistanceLayout> distance_layout;
   /// Their scratch memory, one workspace per frame being measured, kept from frame to frame.
   std::shared_ptr<DistanceWorkspaces> distance_workspaces;
-  int threads = 1;                           ///< resolved worker threads
-  int frames_in_flight = 2;                  ///< resolved pipeline tokens
+  int threads = 1;            ///< resolved worker threads
+  int frames_in_flight = 2;   ///< resolved pipeline tokens
   std::string config_hash;    ///< frame_config_hash(config), kept in every frame record
   std::string template_hash;  ///< template_hash(templ)
   std::vector<std::string> warnings;
