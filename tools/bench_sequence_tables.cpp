@@ -75,9 +75,9 @@ std::vector<Variant> distance_variants() {
           {"0.5, corr.", sampled(0.5, true)},         {"0.5", sampled(0.5, false)},
           {"0.75, corr.", sampled(0.75, true)},       {"1.0, corr.", sampled(1.0, true)},
           {"vertices, corr.", vertices_only(true)},   {"vertices", vertices_only(false)},
-          {"adapt. 0.125/0.5", adaptive(0.125, 0.5)}, {"adapt. 0.125/0.7", adaptive(0.125, 0.7)},
-          {"adapt. 0.125/0.6", adaptive(0.125, 0.6)}, {"adapt. 0.125/0.4", adaptive(0.125, 0.4)},
-          {"adapt. 0.25/0.5", adaptive(0.25, 0.5)}};
+          {"adapt. 0.125/0.4", adaptive(0.125, 0.4)}, {"adapt. 0.125/0.3", adaptive(0.125, 0.3)},
+          {"adapt. 0.125/0.5", adaptive(0.125, 0.5)}, {"adapt. 0.125/0.6", adaptive(0.125, 0.6)},
+          {"adapt. 0.25/0.4", adaptive(0.25, 0.4)}};
 }
 
 // Both directions between an optimized frame and its input, as the sequence job measures them

@@ -214,15 +214,18 @@ DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
   for (int v = 0; v < A.num_vertices(); ++v) stats.samples += vertex_owner[v] >= 0;
   stats.samples += m;
 
-  // Refinement in two levels, at twice the spacing, then at the spacing: each samples the
-  // triangles whose samples so far reach refine_above times the largest sample so far.
+  // Refinement in two levels: at twice the spacing, the triangles whose samples reach
+  // refine_above times the largest sample; then at the spacing, those whose samples so far reach
+  // sqrt(refine_above) times the largest so far (the samples at twice the spacing tell better
+  // where the maximum is than the vertices and centroids).
   if (!(options.sample_edges || options.sample_faces)) return stats;
   const double h = options.spacing * layout.mean_edge_length(A.V);
   const unsigned edges = options.sample_edges ? 0x38u : 0u;
   std::vector<int>& refine = work.refine;
   std::vector<long>& count = work.count;
   for (const double spacing : {2.0 * h, h}) {
-    const double threshold = options.refine_above * stats.max;
+    const double threshold =
+        (spacing > h ? options.refine_above : std::sqrt(options.refine_above)) * stats.max;
     refine.clear();
     for (int t = 0; t < m; ++t)
       if (triangle_max[t] >= threshold && triangle_max[t] > 0.0) refine.push_back(t);

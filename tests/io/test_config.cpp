@@ -112,7 +112,7 @@ TEST_CASE("measures: the sampling of summary.csv's distances, every DistanceOpti
   CHECK(defaults.measures.sample_edges);
   CHECK(defaults.measures.sample_faces);
   CHECK(defaults.measures.adaptive);
-  CHECK(defaults.measures.refine_above == 0.5);
+  CHECK(defaults.measures.refine_above == 0.4);
   CHECK(defaults.measures.corresponding_triangles);  // set by the job, not a key
   const JobConfig c = parse(with("measures", R"({"spacing": 0.25, "sample_edges": false,
       "sample_faces": false, "adaptive": false, "refine_above": 0.75})"));
