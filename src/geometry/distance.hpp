@@ -22,10 +22,11 @@ struct DistanceOptions {
   /// (1/12 of the area at each corner, 3/4 at the centroid). Then the triangles whose samples
   /// reach `refine_above` times the largest sample are sampled at twice `spacing`, and those
   /// whose samples then reach sqrt(refine_above) times the largest so far at `spacing` (all
-  /// three edges and the lattice, as above); the maximum is taken over every sample (DistanceStats::samples counts them all). Every
-  /// sample's distance is exact, and the triangles refined depend on those distances alone, so
-  /// the result does not depend on the number of threads either.
-  /// Off: every triangle is sampled at `spacing`; mean and RMS are those of the samples.
+  /// three edges and the lattice, as above); the maximum is taken over every sample
+  /// (DistanceStats::samples counts them all). Every sample's distance is exact, and the triangles
+  /// refined depend on those distances alone, so the result does not depend on the number of
+  /// threads either. Off: every triangle is sampled at `spacing`; mean and RMS are those of the
+  /// samples.
   bool adaptive = false;
   /// In [0, 1]: with `adaptive`, the fraction of the largest sample that a triangle's samples
   /// must reach for it to be refined (0: every triangle with a nonzero distance). 0.4 finds the
