@@ -174,6 +174,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const TriMesh templ = read_obj(frames.front()).mesh;
   const MassageOptions options;
   const Massager massager(templ, options, "template");
+  const DistanceLayout layout(templ.F, templ.num_vertices());  // as the job's plan
+  DistanceWorkspace work;                                      // as the job's pool
   const double setup = thread_seconds() - t_setup;
   double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
   int iterations = 0, count = 0;
@@ -201,13 +203,15 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const TriMesh output{result.V, templ.F};
     const Topology& topology = massager.topology();
     const DistanceOptions sampling = default_sequence_measures();  // the job's "measures"
-    const DistanceStats out_to_in =
-        one_sided_distance(output, reference.bvh(), sampling, &reference.planes(), &topology);
-    TriangleBvh output_bvh = reference.bvh();
+    const DistanceStats out_to_in = one_sided_distance(
+        output, reference.bvh(), sampling, &reference.planes(), &topology, &layout, &work);
+    TriangleBvh& output_bvh = work.bvh;  // as the job does
+    output_bvh = reference.bvh();
     output_bvh.refit(result.V);
-    const TrianglePlanes output_planes(result.V, templ.F, &topology);
-    const DistanceStats in_to_out =
-        one_sided_distance(file.mesh, output_bvh, sampling, &output_planes, &topology);
+    TrianglePlanes& output_planes = work.planes;
+    output_planes.update(result.V, templ.F, &topology);
+    const DistanceStats in_to_out = one_sided_distance(file.mesh, output_bvh, sampling,
+                                                       &output_planes, &topology, &layout, &work);
     measure += (thread_seconds() - t0);
     shear += t_shear;
     distance += (thread_seconds() - t0) - t_shear;

@@ -21,6 +21,9 @@ namespace {
 // finely meshed model cannot ask for billions of samples.
 constexpr long kMaxEdgeSegments = 1 << 20;
 constexpr long kMaxFaceDivisions = 1 << 12;
+// Samples of the adaptive coarse pass per task, in index order (fixed, so that nothing depends
+// on the number of threads).
+constexpr int kCoarseChunk = 512;
 
 struct Partial {
   double max = 0.0, sum = 0.0, sum2 = 0.0;
@@ -32,54 +35,6 @@ long divisions(double length, double h, long cap) {
   return std::clamp(static_cast<long>(std::ceil(length / h)), 1L, cap);
 }
 
-// Which corners (bits 0–2) and edges k → k+1 (bits 3–5) each triangle samples: every vertex and
-// every undirected edge belongs to the first triangle (lowest index, then lowest corner) using it.
-// Also the mean edge length, each undirected edge once, summed in the order of (lower vertex,
-// higher vertex) as mean_edge_length does (so the value is the same, bit for bit). Linear: the
-// half-edges are bucketed by their lower vertex, and each (small) bucket sorted.
-struct Sampling {
-  std::vector<uint8_t> owns;
-  double mean_edge = 0.0;
-};
-
-Sampling sampling(const TriMesh& A, bool edges) {
-  const int n = A.num_vertices(), m = A.num_triangles();
-  Sampling out;
-  out.owns.assign(m, 0);
-  std::vector<uint8_t> seen(n, 0);
-  for (int t = 0; t < m; ++t)
-    for (int k = 0; k < 3; ++k)
-      if (!seen[A.F(t, k)]) {
-        seen[A.F(t, k)] = 1;
-        out.owns[t] |= uint8_t(1u << k);
-      }
-  std::vector<int> start(n + 1, 0);
-  for (int t = 0; t < m; ++t)
-    for (int k = 0; k < 3; ++k) ++start[std::min(A.F(t, k), A.F(t, (k + 1) % 3)) + 1];
-  for (int v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::pair<int, int>> entries(3 * static_cast<size_t>(m));  // (higher vertex, 3t+k)
-  std::vector<int> cursor(start.begin(), start.end() - 1);
-  for (int t = 0; t < m; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = A.F(t, k), b = A.F(t, (k + 1) % 3);
-      entries[cursor[std::min(a, b)]++] = {std::max(a, b), 3 * t + k};
-    }
-  double sum = 0.0;
-  long count = 0;
-  for (int a = 0; a < n; ++a) {
-    const auto first = entries.begin() + start[a], last = entries.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto e = first; e != last; ++e) {
-      if (e != first && (e - 1)->first == e->first) continue;
-      if (edges) out.owns[e->second / 3] |= uint8_t(8u << (e->second % 3));
-      sum += (A.V.row(a) - A.V.row(e->first)).norm();
-      ++count;
-    }
-  }
-  out.mean_edge = count > 0 ? sum / static_cast<double>(count) : 0.0;
-  return out;
-}
-
 // The grid's cell: the mean edge length of B's triangles (each triangle's three edges).
 double cell_size(const Positions& V, const Triangles& F) {
   double sum = 0.0;
@@ -89,89 +44,88 @@ double cell_size(const Positions& V, const Triangles& F) {
   return mean > 0.0 && std::isfinite(mean) ? mean : 1.0;
 }
 
-}  // namespace
-
-DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
-                                 const DistanceOptions& options, const TrianglePlanes* planes_b,
-                                 const Topology* topology_b) {
-  validate_mesh(A, "one_sided_distance (A)");
-  if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
-    std::ostringstream msg;
-    msg << "DistanceOptions::spacing must be a positive number, not " << options.spacing;
-    throw ConfigError(msg.str());
+// Exact squared distance from q to B: the grid answers near B, the BVH elsewhere. `hint` is the
+// triangle tried first (or −1) and becomes the closest one.
+struct ExactQuery {
+  const TriangleGrid& grid;
+  const TriangleBvh& B;
+  double operator()(const Vec3& q, int& hint) const {
+    double best2 = std::numeric_limits<double>::infinity();
+    int best = -1;
+    if (!grid.closest(q, best2, best, hint)) {
+      const SurfacePoint sp = B.closest(q, best2);
+      if (sp.triangle >= 0) {
+        best2 = sp.dist2;
+        best = sp.triangle;
+      }
+    }
+    hint = best;
+    return best2;
   }
-  DistanceStats stats;
+};
+
+// The points of triangle p at spacing h: the interior points of the edges k → k+1 whose bit
+// (8 << k) is set in `edges`, then, with `faces`, the interior lattice points, visited row by row
+// in a serpentine order so that consecutive samples stay neighbours, or the centroid when the
+// lattice has none (and `centroid`).
+template <class Sample>
+void sample_triangle(const Vec3 (&p)[3], unsigned edges, bool faces, bool centroid, double h,
+                     Sample&& sample) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(edges & (8u << k))) continue;
+    const Vec3& a = p[k];
+    const Vec3 e = p[(k + 1) % 3] - a;
+    const long segments = divisions(e.norm(), h, kMaxEdgeSegments);
+    for (long j = 1; j < segments; ++j) sample(a + (double(j) / double(segments)) * e);
+  }
+  if (!faces) return;
+  const double longest =
+      std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
+  const long n = divisions(longest, h, kMaxFaceDivisions);
+  if (n < 3) {
+    if (centroid) sample((p[0] + p[1] + p[2]) / 3.0);
+    return;
+  }
+  // Interior lattice points (i, j, n − i − j) / n with all three coordinates ≥ 1/n.
+  for (long i = 1; i <= n - 2; ++i) {
+    const long count = n - 1 - i;
+    for (long s = 0; s < count; ++s) {
+      const long j = (i % 2 == 1) ? 1 + s : count - s;
+      const double u = double(i) / double(n), v = double(j) / double(n);
+      sample(u * p[0] + v * p[1] + (1.0 - u - v) * p[2]);
+    }
+  }
+}
+
+DistanceStats uniform_distance(const TriMesh& A, const ExactQuery& query,
+                               const DistanceLayout& layout, const DistanceOptions& options,
+                               int triangles_b) {
   const int m = A.num_triangles();
-  if (m == 0) return stats;
-  if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");
-  const Positions& VB = B.positions();
-  const Triangles& FB = B.triangles();
-  TrianglePlanes own_planes;
-  if (!planes_b || planes_b->size() != FB.rows()) {
-    own_planes.update(VB, FB, topology_b);
-    planes_b = &own_planes;
-  }
-  const TriangleGrid grid(VB, FB, *planes_b, cell_size(VB, FB), topology_b);
-
-  const Sampling layout = sampling(A, options.sample_edges);
-  const std::vector<uint8_t>& owns = layout.owns;
-  const double h = options.spacing * layout.mean_edge;
+  const std::vector<uint8_t>& owns = layout.owns();
+  const double h = options.spacing * layout.mean_edge_length(A.V);
   std::vector<Partial> partial(m);
-
   tbb::parallel_for(tbb::blocked_range<int>(0, m, 256), [&](const tbb::blocked_range<int>& r) {
     for (int t = r.begin(); t != r.end(); ++t) {
       Partial& acc = partial[t];
       const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
       // Consecutive samples are close: the previous one's triangle is tried first (the first
       // sample tries the corresponding triangle of B, if there is one).
-      int hint = options.corresponding_triangles && t < FB.rows() ? t : -1;
+      int hint = options.corresponding_triangles && t < triangles_b ? t : -1;
       auto sample = [&](const Vec3& q) {
-        double best2 = std::numeric_limits<double>::infinity();
-        int best = -1;
-        if (!grid.closest(q, best2, best, hint)) {
-          const SurfacePoint sp = B.closest(q, best2);
-          if (sp.triangle >= 0) {
-            best2 = sp.dist2;
-            best = sp.triangle;
-          }
-        }
-        hint = best;
-        const double d = std::sqrt(best2);
+        const double d2 = query(q, hint);
+        const double d = std::sqrt(d2);
         acc.max = std::max(acc.max, d);
         acc.sum += d;
-        acc.sum2 += best2;
+        acc.sum2 += d2;
         ++acc.count;
       };
       for (int k = 0; k < 3; ++k)
         if (owns[t] & (1u << k)) sample(p[k]);
-      for (int k = 0; k < 3; ++k) {
-        if (!(owns[t] & (8u << k))) continue;
-        const Vec3& a = p[k];
-        const Vec3 e = p[(k + 1) % 3] - a;
-        const long segments = divisions(e.norm(), h, kMaxEdgeSegments);
-        for (long j = 1; j < segments; ++j) sample(a + (double(j) / double(segments)) * e);
-      }
-      if (!options.sample_faces) continue;
-      const double longest =
-          std::max({(p[1] - p[0]).norm(), (p[2] - p[1]).norm(), (p[0] - p[2]).norm()});
-      const long n = divisions(longest, h, kMaxFaceDivisions);
-      if (n < 3) {
-        sample((p[0] + p[1] + p[2]) / 3.0);
-        continue;
-      }
-      // Interior lattice points (i, j, n − i − j) / n with all three coordinates ≥ 1/n, visited
-      // row by row in a serpentine order so that consecutive samples stay neighbours.
-      for (long i = 1; i <= n - 2; ++i) {
-        const long count = n - 1 - i;
-        for (long s = 0; s < count; ++s) {
-          const long j = (i % 2 == 1) ? 1 + s : count - s;
-          const double u = double(i) / double(n), v = double(j) / double(n);
-          sample(u * p[0] + v * p[1] + (1.0 - u - v) * p[2]);
-        }
-      }
+      sample_triangle(p, options.sample_edges ? owns[t] : 0u, options.sample_faces, true, h,
+                      sample);
     }
   });
-
+  DistanceStats stats;
   double sum = 0.0, sum2 = 0.0;
   for (const Partial& acc : partial) {
     stats.max = std::max(stats.max, acc.max);
@@ -181,6 +135,164 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
   }
   stats.mean = sum / static_cast<double>(stats.samples);
   stats.rms = std::sqrt(sum2 / static_cast<double>(stats.samples));
+  return stats;
+}
+
+// Exact distances of `count` points, in fixed chunks of consecutive indices; point(i) gives the
+// i-th point and its first triangle to try (or −1: the previous point's closest triangle).
+template <class Point>
+void coarse_samples(int count, std::vector<double>& out, const ExactQuery& query, Point&& point) {
+  out.resize(count);
+  const int chunks = (count + kCoarseChunk - 1) / kCoarseChunk;
+  tbb::parallel_for(tbb::blocked_range<int>(0, chunks), [&](const tbb::blocked_range<int>& r) {
+    for (int c = r.begin(); c != r.end(); ++c) {
+      int previous = -1;
+      for (int i = c * kCoarseChunk, end = std::min(count, i + kCoarseChunk); i < end; ++i) {
+        Vec3 q;
+        int hint = previous;
+        if (!point(i, q, hint)) {
+          out[i] = 0.0;
+          continue;
+        }
+        out[i] = std::sqrt(query(q, hint));
+        previous = hint;
+      }
+    }
+  });
+}
+
+DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
+                                const DistanceLayout& layout, const DistanceOptions& options,
+                                int triangles_b, DistanceWorkspace& work) {
+  const int m = A.num_triangles();
+  const bool corresponding = options.corresponding_triangles;
+  auto first_try = [&](int t, int& hint) {
+    if (corresponding && t < triangles_b) hint = t;
+  };
+  const std::vector<int>& vertex_owner = layout.vertex_owner();
+  std::vector<double>& dv = work.vertex_distance;
+  std::vector<double>& dc = work.centroid_distance;
+  coarse_samples(A.num_vertices(), dv, query, [&](int v, Vec3& q, int& hint) {
+    if (vertex_owner[v] < 0) return false;  // in no triangle: not on A's surface
+    q = A.vertex(v);
+    first_try(vertex_owner[v], hint);
+    return true;
+  });
+  coarse_samples(m, dc, query, [&](int t, Vec3& q, int& hint) {
+    q = (A.vertex(A.F(t, 0)) + A.vertex(A.F(t, 1)) + A.vertex(A.F(t, 2))) / 3.0;
+    first_try(t, hint);
+    return true;
+  });
+
+  // The rule of degree 2 on every triangle (1/12 at each corner, 3/4 at the centroid), weighted
+  // by the triangle's area; the triangles count alike if they are all degenerate.
+  DistanceStats stats;
+  std::vector<double>& triangle_max = work.triangle_max;
+  triangle_max.resize(m);
+  double area = 0.0, sum = 0.0, sum2 = 0.0, plain = 0.0, plain2 = 0.0;
+  for (int t = 0; t < m; ++t) {
+    const double a = dv[A.F(t, 0)], b = dv[A.F(t, 1)], c = dv[A.F(t, 2)], d = dc[t];
+    const double q1 = (a + b + c) / 12.0 + 0.75 * d;
+    const double q2 = (a * a + b * b + c * c) / 12.0 + 0.75 * d * d;
+    const Vec3 p0 = A.vertex(A.F(t, 0));
+    const double at = 0.5 * (A.vertex(A.F(t, 1)) - p0).cross(A.vertex(A.F(t, 2)) - p0).norm();
+    area += at;
+    sum += at * q1;
+    sum2 += at * q2;
+    plain += q1;
+    plain2 += q2;
+    triangle_max[t] = std::max({a, b, c, d});
+    stats.max = std::max(stats.max, triangle_max[t]);
+  }
+  if (area > 0.0 && std::isfinite(area)) {
+    stats.mean = sum / area;
+    stats.rms = std::sqrt(sum2 / area);
+  } else {
+    stats.mean = plain / m;
+    stats.rms = std::sqrt(plain2 / m);
+  }
+  for (int v = 0; v < A.num_vertices(); ++v) stats.samples += vertex_owner[v] >= 0;
+  stats.samples += m;
+
+  // Refinement in two levels: at twice the spacing, the triangles whose samples reach
+  // refine_above times the largest sample; then at the spacing, those whose samples so far reach
+  // sqrt(refine_above) times the largest so far (the samples at twice the spacing tell better
+  // where the maximum is than the vertices and centroids).
+  if (!(options.sample_edges || options.sample_faces)) return stats;
+  const double h = options.spacing * layout.mean_edge_length(A.V);
+  const unsigned edges = options.sample_edges ? 0x38u : 0u;
+  std::vector<int>& refine = work.refine;
+  std::vector<long>& count = work.count;
+  for (const double spacing : {2.0 * h, h}) {
+    const double threshold =
+        (spacing > h ? options.refine_above : std::sqrt(options.refine_above)) * stats.max;
+    refine.clear();
+    for (int t = 0; t < m; ++t)
+      if (triangle_max[t] >= threshold && triangle_max[t] > 0.0) refine.push_back(t);
+    count.assign(refine.size(), 0);
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, refine.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+          for (size_t i = r.begin(); i != r.end(); ++i) {
+            const int t = refine[i];
+            const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
+            int hint = corresponding && t < triangles_b ? t : -1;
+            double& most = triangle_max[t];
+            sample_triangle(p, edges, options.sample_faces, false, spacing, [&](const Vec3& q) {
+              most = std::max(most, std::sqrt(query(q, hint)));
+              ++count[i];
+            });
+          }
+        });
+    for (size_t i = 0; i < refine.size(); ++i) {
+      stats.samples += count[i];
+      stats.max = std::max(stats.max, triangle_max[refine[i]]);
+    }
+  }
+  stats.refined = static_cast<long>(refine.size());
+  return stats;
+}
+
+}  // namespace
+
+DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
+                                 const DistanceOptions& options, const TrianglePlanes* planes_b,
+                                 const Topology* topology_b, const DistanceLayout* layout,
+                                 DistanceWorkspace* work) {
+  validate_mesh(A, "one_sided_distance (A)");
+  if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
+    std::ostringstream msg;
+    msg << "DistanceOptions::spacing must be a positive number, not " << options.spacing;
+    throw ConfigError(msg.str());
+  }
+  if (!(options.refine_above >= 0.0 && options.refine_above <= 1.0)) {
+    std::ostringstream msg;
+    msg << "DistanceOptions::refine_above must be in [0, 1], not " << options.refine_above;
+    throw ConfigError(msg.str());
+  }
+  const int m = A.num_triangles();
+  if (m == 0) return DistanceStats{};
+  if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");
+  const Positions& VB = B.positions();
+  const Triangles& FB = B.triangles();
+  TrianglePlanes own_planes;
+  if (!planes_b || planes_b->size() != FB.rows()) {
+    own_planes.update(VB, FB, topology_b);
+    planes_b = &own_planes;
+  }
+  DistanceWorkspace own_work;
+  if (!work) work = &own_work;
+  work->grid.build(VB, FB, *planes_b, cell_size(VB, FB), topology_b);
+  const ExactQuery query{work->grid, B};
+
+  DistanceLayout own_layout;
+  if (!layout || !layout->fits(A.F, A.num_vertices())) {
+    own_layout = DistanceLayout(A.F, A.num_vertices());
+    layout = &own_layout;
+  }
+  const int triangles_b = static_cast<int>(FB.rows());
+  DistanceStats stats = options.adaptive
+                            ? adaptive_distance(A, query, *layout, options, triangles_b, *work)
+                            : uniform_distance(A, query, *layout, options, triangles_b);
 
   Eigen::RowVector3d lo = A.V.colwise().minCoeff(), hi = A.V.colwise().maxCoeff();
   if (VB.rows() > 0) {

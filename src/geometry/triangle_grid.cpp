@@ -18,18 +18,20 @@ constexpr int kChunk = 64;  // boxes tested per SIMD pass
 
 }  // namespace
 
-TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes,
-                           double cell, const Topology* topo)
-    : V_(&V),
-      F_(&F),
-      planes_(&planes),
-      topo_(topo && topo->num_triangles == F.rows() ? topo : nullptr) {
+void TriangleGrid::build(const Positions& V, const Triangles& F, const TrianglePlanes& planes,
+                         double cell, const Topology* topo) {
   const int m = static_cast<int>(F.rows());
   if (planes.size() != m || !(cell > 0.0) || !std::isfinite(cell)) {
     std::ostringstream msg;
     msg << "TriangleGrid: " << planes.size() << " frames for " << m << " triangles, cell " << cell;
     throw InputError(msg.str());
   }
+  V_ = &V;
+  F_ = &F;
+  planes_ = &planes;
+  topo_ = topo && topo->num_triangles == F.rows() ? topo : nullptr;
+  cells_.clear();
+  big_.clear();
   if (m == 0) return;
   Eigen::AlignedBox3d box;
   for (int t = 0; t < m; ++t)
@@ -50,11 +52,20 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
   const long num_cells = long(dims_[0]) * dims_[1] * dims_[2];
 
   // Cell ranges of every triangle's box; counting sort into CSR, triangles in index order.
-  std::vector<std::array<int, 6>> range(m);
+  std::vector<std::array<int, 6>>& range = range_;
+  range.resize(m);
   cells_.assign(num_cells + 1, 0);
+  std::vector<std::array<float, 6>>& boxes = boxes_;
+  boxes.resize(m);
   for (int t = 0; t < m; ++t) {
     Eigen::AlignedBox3d tb;
     for (int k = 0; k < 3; ++k) tb.extend(V.row(F(t, k)).transpose());
+    for (int a = 0; a < 3; ++a) {  // [centre − half, centre + half] contains the box
+      const double lo = tb.min()[a], hi = tb.max()[a];
+      const float centre = static_cast<float>(0.5 * (lo + hi));
+      boxes[t][a] = centre;
+      boxes[t][3 + a] = float_at_least(std::max(hi - centre, centre - lo));
+    }
     long count = 1;
     for (int a = 0; a < 3; ++a) {
       range[t][a] = std::clamp(static_cast<int>(std::floor((tb.min()[a] - origin_[a]) * inv_cell_)),
@@ -76,26 +87,19 @@ TriangleGrid::TriangleGrid(const Positions& V, const Triangles& F, const Triangl
   const int entries = cells_[num_cells];
   triangle_.resize(entries);
   for (std::vector<float>& b : box_) b.resize(entries);
-  std::vector<int> fill(cells_.begin(), cells_.end() - 1);
+  std::vector<int>& fill = fill_;
+  fill.assign(cells_.begin(), cells_.end() - 1);
+  // Scatter the triangles into their cells, then copy their boxes in entry order (one scattered
+  // write per entry instead of seven).
   for (int t = 0; t < m; ++t) {
     if (range[t][0] < 0) continue;
-    float centre[3], half[3];  // [centre − half, centre + half] contains the box
-    for (int a = 0; a < 3; ++a) {
-      const double lo = std::min({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
-      const double hi = std::max({V(F(t, 0), a), V(F(t, 1), a), V(F(t, 2), a)});
-      centre[a] = static_cast<float>(0.5 * (lo + hi));
-      half[a] = float_at_least(std::max(hi - centre[a], centre[a] - lo));
-    }
     for (int z = range[t][2]; z <= range[t][5]; ++z)
       for (int y = range[t][1]; y <= range[t][4]; ++y)
-        for (int x = range[t][0]; x <= range[t][3]; ++x) {
-          const int e = fill[cell_index(x, y, z)]++;
-          triangle_[e] = t;
-          for (int a = 0; a < 3; ++a) {
-            box_[a][e] = centre[a];
-            box_[3 + a][e] = half[a];
-          }
-        }
+        for (int x = range[t][0]; x <= range[t][3]; ++x) triangle_[fill[cell_index(x, y, z)]++] = t;
+  }
+  for (int e = 0; e < entries; ++e) {
+    const std::array<float, 6>& b = boxes[triangle_[e]];
+    for (int a = 0; a < 6; ++a) box_[a][e] = b[a];
   }
   // The float box distance is off by a few units in the last place of the coordinates.
   const double scale = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());

@@ -3,6 +3,7 @@
 /// structure of the Metro tool behind the paper's Tables 1–3): a query tests the triangles of its
 /// own cell, with the projection frames' cheap face case and lower bound, and is exact as soon
 /// as the ball through the best point found stays within the cells it tested.
+#include <array>
 #include <vector>
 
 #include "geometry/triangle_planes.hpp"
@@ -21,7 +22,14 @@ class TriangleGrid {
   /// a hint that settles in its face (TrianglePlanes::face_settles) spares the tests of its edge
   /// neighbours.
   TriangleGrid(const Positions& V, const Triangles& F, const TrianglePlanes& planes, double cell,
-               const Topology* topo = nullptr);
+               const Topology* topo = nullptr) {
+    build(V, F, planes, cell, topo);
+  }
+
+  /// Rebuilds the grid as the constructor does, reusing this grid's memory (a frame after frame
+  /// allocates nothing once its arrays are large enough).
+  void build(const Positions& V, const Triangles& F, const TrianglePlanes& planes, double cell,
+             const Topology* topo = nullptr);
 
   /// Lowers best2 to the squared distance of the closest triangle of the mesh to p, and sets
   /// best_triangle to it, when one is strictly closer than sqrt(best2); `hint`, if >= 0, is
@@ -53,6 +61,10 @@ class TriangleGrid {
   std::vector<float> box_[6];
   double margin_ = 0.0;   ///< bound on the float box test's rounding error
   std::vector<int> big_;  ///< triangles tested by every query
+  // Scratch of build(): each triangle's cell range and float box, the CSR fill cursors.
+  std::vector<std::array<int, 6>> range_;
+  std::vector<std::array<float, 6>> boxes_;
+  std::vector<int> fill_;
 };
 
 }  // namespace sm

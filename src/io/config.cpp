@@ -465,6 +465,8 @@ void read_sequence_measures(const Section& s, DistanceOptions& m) {
   read(s, "spacing", m.spacing, Interval{0.0, true});
   read(s, "sample_edges", m.sample_edges);
   read(s, "sample_faces", m.sample_faces);
+  read(s, "adaptive", m.adaptive);
+  read(s, "refine_above", m.refine_above, Interval{0.0, false, 1.0, false});
 }
 
 // "checks", "shard" and "resume" of the sequence job.
@@ -698,7 +700,8 @@ JobConfig parse_config(const json& document, const fs::path& base_dir) {
 
   read_massage(Section(root.get("massage"), "massage", kMassageKeys), c.massage);
   read_sequence_measures(
-      Section(root.get("measures"), "measures", {"spacing", "sample_edges", "sample_faces"}),
+      Section(root.get("measures"), "measures",
+              {"spacing", "sample_edges", "sample_faces", "adaptive", "refine_above"}),
       c.measures);
   read(root, "threads", c.threads, 0, 4096);
   read(root, "frames_in_flight", c.frames_in_flight, 0, 1000000);
@@ -763,7 +766,9 @@ json to_json(const JobConfig& c) {
                   {"pinned", m.pinned}};
   j["measures"] = {{"spacing", c.measures.spacing},
                    {"sample_edges", c.measures.sample_edges},
-                   {"sample_faces", c.measures.sample_faces}};
+                   {"sample_faces", c.measures.sample_faces},
+                   {"adaptive", c.measures.adaptive},
+                   {"refine_above", c.measures.refine_above}};
   j["threads"] = c.threads;
   j["frames_in_flight"] = c.frames_in_flight;
   const FrameChecks& checks = c.checks;
@@ -906,7 +911,9 @@ void read_measures(const Section& s, MeasureOptions& m) {
 }  // namespace
 
 DistanceOptions default_sequence_measures() {
-  DistanceOptions o;  // the sampling's defaults
+  DistanceOptions o;  // the sampling's defaults, but adaptive (README, "Performance")
+  o.adaptive = true;
+  o.spacing = 0.125;
   o.corresponding_triangles = true;
   return o;
 }

@@ -225,13 +225,20 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
       V = result.V;
       const TriMesh output{V, F};
       const Topology& topology = plan.massager->topology();
-      s.out_to_in =
-          one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(), &topology);
-      TriangleBvh output_bvh = reference->bvh();  // same triangles: refit, no rebuild
+      const DistanceLayout* layout = plan.distance_layout.get();
+      std::optional<DistanceWorkspaces::Lease> lease;
+      if (plan.distance_workspaces) lease.emplace(plan.distance_workspaces->acquire());
+      DistanceWorkspace own;
+      DistanceWorkspace* work = lease ? lease->get() : &own;
+      s.out_to_in = one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(),
+                                       &topology, layout, work);
+      TriangleBvh& output_bvh = work->bvh;
+      output_bvh = reference->bvh();  // same triangles: refit, no rebuild
       output_bvh.refit(V);
-      const TrianglePlanes output_planes(V, F, &topology);
-      s.in_to_out =
-          one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology);
+      TrianglePlanes& output_planes = work->planes;
+      output_planes.update(V, F, &topology);
+      s.in_to_out = one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology,
+                                       layout, work);
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
@@ -340,6 +347,9 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
   }
   plan.massager =
       std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
+  plan.distance_layout =
+      std::make_shared<const DistanceLayout>(plan.templ.F, plan.templ.num_vertices());
+  plan.distance_workspaces = std::make_shared<DistanceWorkspaces>();
   plan.config_hash = frame_config_hash(c);
   plan.template_hash = template_hash(plan.templ);
 
@@ -398,9 +408,18 @@ std::string describe_plan(const SequencePlan& plan) {
   s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
     << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>() << ", solver "
     << m["solver"].get<std::string>() << "\n";
-  s << "distances (summary.csv): samples every " << format_number(c.measures.spacing)
-    << " mean edge lengths, at the vertices" << (c.measures.sample_edges ? ", along the edges" : "")
-    << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
+  if (c.measures.adaptive)
+    s << "distances (summary.csv): adaptive, at the vertices and centroids, then"
+      << (c.measures.sample_edges ? " along the edges" : "")
+      << (c.measures.sample_edges && c.measures.sample_faces ? " and" : "")
+      << (c.measures.sample_faces ? " inside" : "") << " the triangles above "
+      << format_number(c.measures.refine_above) << " of the maximum, samples every "
+      << format_number(c.measures.spacing) << " mean edge lengths\n";
+  else
+    s << "distances (summary.csv): samples every " << format_number(c.measures.spacing)
+      << " mean edge lengths, at the vertices"
+      << (c.measures.sample_edges ? ", along the edges" : "")
+      << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
   s << plan.sink->describe(plan.run_frames);

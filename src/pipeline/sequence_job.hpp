@@ -76,8 +76,12 @@ struct SequencePlan {
   std::string template_source;  ///< e.g. "frame 0 (frame_0000.obj)"
   TriMesh templ;                ///< the original template: weights and shear
   std::shared_ptr<const Massager> massager;  ///< built once from the template
-  int threads = 1;                           ///< resolved worker threads
-  int frames_in_flight = 2;                  ///< resolved pipeline tokens
+  /// The distances' sampling layout of the template's triangles (every frame's), built once.
+  std::shared_ptr<const DistanceLayout> distance_layout;
+  /// Their scratch memory, one workspace per frame being measured, kept from frame to frame.
+  std::shared_ptr<DistanceWorkspaces> distance_workspaces;
+  int threads = 1;            ///< resolved worker threads
+  int frames_in_flight = 2;   ///< resolved pipeline tokens
   std::string config_hash;    ///< frame_config_hash(config), kept in every frame record
   std::string template_hash;  ///< template_hash(templ)
   std::vector<std::string> warnings;

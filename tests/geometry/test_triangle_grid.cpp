@@ -95,3 +95,35 @@ TEST_CASE("sampled distance equals brute force at the samples", "[grid][distance
     CHECK(d.rms == Approx(std::sqrt(sum2 / a.num_vertices())).margin(1e-12));
   }
 }
+
+TEST_CASE("a grid rebuilt for another mesh answers as a new grid does", "[grid]") {
+  // build() reuses the arrays of the previous mesh (larger, then smaller, then empty).
+  const TriMesh meshes[] = {make_torus(40, 16, 2.0, 0.5), bumpy_sphere(), make_grid(3, 3, 1, 1)};
+  TriangleGrid reused;
+  for (const TriMesh& mesh : meshes) {
+    const TrianglePlanes planes(mesh.V, mesh.F);
+    const double h = mean_edge_length(mesh);
+    reused.build(mesh.V, mesh.F, planes, h);
+    const TriangleGrid fresh(mesh.V, mesh.F, planes, h);
+    CHECK(reused.cell_size() == fresh.cell_size());
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<int> vertex(0, mesh.num_vertices() - 1);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < 200; ++i) {
+      const Vec3 p = mesh.vertex(vertex(rng)) + 0.3 * h * Vec3(u(rng), u(rng), u(rng));
+      double a2 = std::numeric_limits<double>::infinity(), b2 = a2;
+      int a = -1, b = -1;
+      const bool ra = reused.closest(p, a2, a), rb = fresh.closest(p, b2, b);
+      CHECK(ra == rb);
+      CHECK(a == b);
+      CHECK(a2 == b2);
+    }
+  }
+  const TriMesh none;
+  const TrianglePlanes no_planes(none.V, none.F);
+  reused.build(none.V, none.F, no_planes, 1.0);
+  CHECK(reused.empty());
+  double d2 = 1.0;
+  int t = -1;
+  CHECK_FALSE(reused.closest(Vec3::Zero(), d2, t));
+}

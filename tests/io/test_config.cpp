@@ -108,19 +108,26 @@ TEST_CASE("every MassageOptions key is settable under massage") {
 
 TEST_CASE("measures: the sampling of summary.csv's distances, every DistanceOptions key") {
   const JobConfig defaults = parse(kMinimal);
-  CHECK(defaults.measures.spacing == 0.25);
+  CHECK(defaults.measures.spacing == 0.125);
   CHECK(defaults.measures.sample_edges);
   CHECK(defaults.measures.sample_faces);
+  CHECK(defaults.measures.adaptive);
+  CHECK(defaults.measures.refine_above == 0.4);
   CHECK(defaults.measures.corresponding_triangles);  // set by the job, not a key
-  const JobConfig c = parse(
-      with("measures", R"({"spacing": 0.125, "sample_edges": false, "sample_faces": false})"));
-  CHECK(c.measures.spacing == 0.125);
+  const JobConfig c = parse(with("measures", R"({"spacing": 0.25, "sample_edges": false,
+      "sample_faces": false, "adaptive": false, "refine_above": 0.75})"));
+  CHECK(c.measures.spacing == 0.25);
   CHECK_FALSE(c.measures.sample_edges);
   CHECK_FALSE(c.measures.sample_faces);
+  CHECK_FALSE(c.measures.adaptive);
+  CHECK(c.measures.refine_above == 0.75);
   CHECK(c.measures.corresponding_triangles);
   const json resolved = to_json(c);
-  CHECK(resolved["measures"] ==
-        json{{"spacing", 0.125}, {"sample_edges", false}, {"sample_faces", false}});
+  CHECK(resolved["measures"] == json{{"spacing", 0.25},
+                                     {"sample_edges", false},
+                                     {"sample_faces", false},
+                                     {"adaptive", false},
+                                     {"refine_above", 0.75}});
   CHECK(to_json(parse_config(resolved, "/elsewhere")) == resolved);
 
   CHECK(config_error(with("measures", R"({"spacing": 0})")) ==
@@ -129,6 +136,10 @@ TEST_CASE("measures: the sampling of summary.csv's distances, every DistanceOpti
         "measures.spacing: expected a number > 0, got \"fine\"");
   CHECK(config_error(with("measures", R"({"sample_edges": 1})")) ==
         "measures.sample_edges: expected true or false, got 1");
+  CHECK(config_error(with("measures", R"({"refine_above": 1.5})"))
+            .rfind("measures.refine_above: expected a number", 0) == 0);
+  CHECK(config_error(with("measures", R"({"adaptive": "yes"})")) ==
+        "measures.adaptive: expected true or false, got \"yes\"");
   CHECK(config_error(with("measures", R"({"spacng": 0.5})")) ==
         "measures.spacng: unknown key (did you mean \"spacing\"?)");
   CHECK(config_error(with("measures", R"({"feature_angle": 30})"))

@@ -95,14 +95,18 @@ TEST_CASE("measures sets the sampling of summary.csv's distances, the same with 
     c.output.dir = dir / out;
     return run_sequence_job(plan_sequence_job(c));
   };
-  const SequenceResult fine = run("fine", 2);
+  const SequenceResult fine = run("fine", 2);  // the default: adaptive
+  run("fine1", 1);
+  c.measures.adaptive = false;
   c.measures.spacing = 0.7;
   run("coarse1", 1);
   const SequenceResult coarse = run("coarse2", 2);
   c.measures.sample_edges = c.measures.sample_faces = false;
   const SequenceResult vertices = run("vertices", 2);
-  for (const char* file : {"summary.csv", "frames/frame_0002.obj", "records/frame_0003.json"})
+  for (const char* file : {"summary.csv", "frames/frame_0002.obj", "records/frame_0003.json"}) {
     CHECK(read_file(dir / "coarse1" / file) == read_file(dir / "coarse2" / file));
+    CHECK(read_file(dir / "fine1" / file) == read_file(dir / "fine" / file));
+  }
   // The corrected frames do not depend on how they are measured; the distances do.
   CHECK(read_file(dir / "fine/frames/frame_0003.obj") ==
         read_file(dir / "vertices/frames/frame_0003.obj"));
@@ -111,10 +115,12 @@ TEST_CASE("measures sets the sampling of summary.csv's distances, the same with 
     const DistanceStats& f = fine.frames[k].out_to_in;
     const DistanceStats& v = vertices.frames[k].out_to_in;
     CHECK(v.samples < coarse.frames[k].out_to_in.samples);
-    CHECK(coarse.frames[k].out_to_in.samples < f.samples);
     CHECK(v.samples == fine.frames[k].vertices);
     CHECK(f.max > 0.0);
-    CHECK(v.max <= f.max * (1.0 + 1e-9));  // the vertices are among the finer sampling's samples
+    CHECK(f.refined > 0);
+    // The vertices are among the adaptive sampling's samples and the uniform one's.
+    CHECK(v.max <= f.max * (1.0 + 1e-9));
+    CHECK(v.max <= coarse.frames[k].out_to_in.max * (1.0 + 1e-9));
   }
 }
 
