@@ -4,12 +4,14 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <sstream>
 
 #include "massage/correspondence.hpp"
 #include "massage/linear_solver.hpp"
 #include "massage/system.hpp"
 #include "mesh/errors.hpp"
+#include "mesh/reorder.hpp"
 #include "mesh/timing.hpp"
 
 namespace sm {
@@ -76,14 +78,21 @@ std::vector<std::array<int, 2>> unique_edges(const Triangles& F) {
 
 }  // namespace
 
+// run() works on the template's vertices and triangles relabelled in a banded order
+// (mesh/reorder.hpp), for the caches and ILU(0); the interface (accessors, run's start and result) keeps the
+// caller's labels. `F`, `topology`, `bvh`, `lambda`, `pattern`, `target`, the flags and edges are
+// in the internal order; `*_in` are the caller's.
 struct Massager::Impl {
   MassageOptions options;
-  Triangles F;
-  std::shared_ptr<const Topology> topology;
-  ShapeWeights weights;
+  MeshOrder order;
+  Triangles F, F_in;
+  std::shared_ptr<const Topology> topology, topology_in;
+  ShapeWeights weights;  // the caller's labels (weights())
+  SparseMatrixR lambda;  // Λ relabelled
   SystemPattern pattern;
   ShapeTarget target;                     // with ShapeTargetKind::Template
   TriangleBvh bvh;                        // over the template; copied and refitted per run
+  TriangleBvh bvh_in;                     // the same in the caller's labels (template_bvh())
   std::vector<std::array<int, 2>> edges;  // for the mean edge length of M
   std::vector<unsigned char> pinned;      // n flags
   int num_pinned = 0;
@@ -123,16 +132,32 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   check_options(options, n);
   Impl& s = *impl_;
   s.options = std::move(options);
-  s.F = templ.F;
-  s.topology = std::make_shared<const Topology>(build_topology(templ));
+  s.F_in = templ.F;
+  s.topology_in = std::make_shared<const Topology>(build_topology(templ));
   s.weights = compute_weights(templ, s.options.weights, s.options.boundary_weights);
-  s.pattern = SystemPattern(shape_matrix(s.weights), templ.F);
+  s.bvh_in = TriangleBvh(templ);
+  // The internal labels: Λ's entries are moved, not recomputed, so the weights are the same.
+  s.order = banded_order(templ);
+  const TriMesh T{to_new_order(s.order, templ.V), to_new_order(s.order, templ.F)};
+  s.F = T.F;
+  s.topology = std::make_shared<const Topology>(build_topology(T));
+  {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<size_t>(s.weights.lambda.nonZeros()));
+    for (int i = 0; i < n; ++i)
+      for (SparseMatrixR::InnerIterator it(s.weights.lambda, i); it; ++it)
+        entries.emplace_back(s.order.vertex_rank[i], s.order.vertex_rank[it.col()], it.value());
+    s.lambda.resize(n, n);
+    s.lambda.setFromTriplets(entries.begin(), entries.end());
+    s.lambda.makeCompressed();
+  }
+  s.pattern = SystemPattern(shape_matrix(ShapeWeights{s.lambda, 0}), T.F);
   if (s.options.shape_target == ShapeTargetKind::Template)
-    s.target = ShapeTarget(templ, s.weights.lambda, *s.topology);
-  s.bvh = TriangleBvh(templ);
-  s.edges = unique_edges(templ.F);
+    s.target = ShapeTarget(T, s.lambda, *s.topology);
+  s.bvh = TriangleBvh(T);
+  s.edges = unique_edges(T.F);
   s.pinned.assign(n, 0);
-  for (int v : s.options.pinned) s.pinned[v] = 1;
+  for (int v : s.options.pinned) s.pinned[s.order.vertex_rank[v]] = 1;
   if (s.options.pin_boundary)
     for (int v = 0; v < n; ++v)
       if (s.topology->is_boundary_vertex[v]) s.pinned[v] = 1;
@@ -152,30 +177,38 @@ Massager::Massager(Massager&&) noexcept = default;
 Massager& Massager::operator=(Massager&&) noexcept = default;
 
 const MassageOptions& Massager::options() const { return impl_->options; }
-const Topology& Massager::topology() const { return *impl_->topology; }
-std::shared_ptr<const Topology> Massager::shared_topology() const { return impl_->topology; }
+const Topology& Massager::topology() const { return *impl_->topology_in; }
+std::shared_ptr<const Topology> Massager::shared_topology() const { return impl_->topology_in; }
 const ShapeWeights& Massager::weights() const { return impl_->weights; }
-const Triangles& Massager::triangles() const { return impl_->F; }
+const Triangles& Massager::triangles() const { return impl_->F_in; }
 int Massager::num_vertices() const { return impl_->pattern.size(); }
-const TriangleBvh& Massager::template_bvh() const { return impl_->bvh; }
+const TriangleBvh& Massager::template_bvh() const { return impl_->bvh_in; }
 
-MassageResult Massager::run(const Positions& start, const Reference& reference) const {
+MassageResult Massager::run(const Positions& start_in, const Reference& reference_in) const {
   const Impl& s = *impl_;
   const MassageOptions& o = s.options;
   const auto t_run = Clock::now();
   const int n = s.pattern.size();
   MassageResult result;
-  result.V = start;
-  if (start.rows() != n) {
+  result.V = start_in;
+  if (start_in.rows() != n) {
     std::ostringstream msg;
-    msg << "the start positions have " << start.rows() << " vertices, the template " << n;
+    msg << "the start positions have " << start_in.rows() << " vertices, the template " << n;
     throw InputError(msg.str());
   }
-  if (!start.allFinite()) {
+  if (!start_in.allFinite()) {
     result.ok = false;
     result.failure = "the start positions contain NaN or infinite coordinates";
     return result;
   }
+  // Into the internal labels: the start, and N when it has the template's connectivity (then
+  // relabelled the same way, with the internal topology and a refit of the internal BVH).
+  const Positions start = to_new_order(s.order, start_in);
+  std::optional<Reference> relabelled;
+  if (reference_in.mesh().F.rows() == s.F_in.rows() && reference_in.mesh().F == s.F_in)
+    relabelled.emplace(TriMesh{to_new_order(s.order, reference_in.mesh().V), s.F},
+                       reference_in.sample_kind(), "reference", s.topology, &s.bvh);
+  const Reference& reference = relabelled ? *relabelled : reference_in;
 
   // Per-run state: M's positions, BVH (the template's tree, refitted only when an exact query on
   // M needs it) and projection frames; correspondences both ways; Lawson weights.
@@ -216,7 +249,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
   const bool use_target = o.shape_target == ShapeTargetKind::Template;
   if (use_target)  // once per run, from the start (see shape_target.hpp)
     result.target_fallback_vertices =
-        s.target.evaluate(start, s.F, s.weights.lambda, *s.topology, delta);
+        s.target.evaluate(start, s.F, s.lambda, *s.topology, delta);
   Ilu0 ilu;
   BicgstabWorkspace workspace;
   DirectSolver direct;
@@ -282,7 +315,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
       result.ok = false;
       result.failure = "iteration " + std::to_string(k) + ": " +
                        (solve.ok ? std::string("the solution contains NaN") : solve.message);
-      result.V = start;
+      result.V = start_in;
       result.iterations.push_back(it);
       result.seconds = seconds_since(t_run);
       return result;
@@ -327,7 +360,7 @@ MassageResult Massager::run(const Positions& start, const Reference& reference) 
     for (int a = 0; a < 3; ++a) ref += nn.row(v_hat[M.F(t, a)].triangle).transpose();
     if (nm.row(t).dot(ref) < 0.0) ++result.folded_triangles;
   }
-  result.V = M.V;
+  result.V = to_old_order(s.order, M.V);
   result.seconds = seconds_since(t_run);
   return result;
 }

@@ -57,6 +57,7 @@ Reference::Reference(TriMesh mesh, SampleKind samples, const char* name,
   }
   planes_.update(mesh_.V, mesh_.F, topology_.get());
   samples_ = surface_samples(mesh_, *topology_, samples);
+  sample_kind_ = samples;
   diagonal_ = sm::bounding_box_diagonal(mesh_.V);
 }
 

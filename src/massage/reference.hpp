@@ -35,6 +35,7 @@ class Reference {
   /// The samples w_j (s×3): N's vertices that lie in a triangle first, in order, then the extra
   /// ones (vertices in no triangle are not on the surface).
   const Positions& samples() const { return samples_; }
+  SampleKind sample_kind() const { return sample_kind_; }
   double bounding_box_diagonal() const { return diagonal_; }
 
  private:
@@ -43,6 +44,7 @@ class Reference {
   TriangleBvh bvh_;
   TrianglePlanes planes_;
   Positions samples_;
+  SampleKind sample_kind_ = SampleKind::Vertices;
   double diagonal_ = 0.0;
 };
 
