@@ -94,6 +94,8 @@ struct MassageResult {
 /// Everything that depends only on the template T and the connectivity of M: the weights, A,
 /// the fixed sparsity pattern of K and its symbolic analysis, M's topology. Build once, then call
 /// run() for any number of (start, reference) pairs, from any number of threads at once.
+/// Internally everything is relabelled in banded order (mesh/reorder.hpp, for the caches and
+/// ILU(0)); every argument, result and accessor uses the caller's labels.
 class Massager {
  public:
   /// Throws InputError (naming `name`) if T has out-of-range indices, non-finite coordinates or
