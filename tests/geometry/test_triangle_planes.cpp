@@ -40,6 +40,24 @@ TriMesh random_triangles(std::mt19937& rng, int count) {
   return m;
 }
 
+// An icosphere with bumps (convex and concave edges, seen from outside and inside).
+TriMesh bumpy_sphere() {
+  TriMesh bumpy = make_icosphere(3, 1.0);
+  for (int v = 0; v < bumpy.num_vertices(); ++v) {
+    const Vec3 p = bumpy.vertex(v);
+    bumpy.V.row(v) *= 1.0 + 0.2 * std::sin(6.0 * p.x()) * std::cos(4.0 * p.z());
+  }
+  return bumpy;
+}
+
+// A grid folded along both diagonals' directions: a ridge and a valley.
+TriMesh folded_grid() {
+  TriMesh folded = make_grid(12, 12, 1.0, 1.0);
+  for (int v = 0; v < folded.num_vertices(); ++v)
+    folded.V(v, 2) = 0.6 * std::abs(folded.V(v, 0) - 0.5) - 0.4 * std::abs(folded.V(v, 1) - 0.5);
+  return folded;
+}
+
 }  // namespace
 
 TEST_CASE("the face case of the projection frames agrees with the full test", "[planes]") {
@@ -143,14 +161,7 @@ TEST_CASE("a walk that runs out of steps returns the best point seen", "[planes]
 TEST_CASE("a face that settles has no closer edge neighbour", "[planes]") {
   // Convex and concave edges (box, bumpy sphere seen from outside and inside, a folded grid),
   // points inside faces at heights from far below to far above the surface.
-  TriMesh bumpy = make_icosphere(3, 1.0);
-  for (int v = 0; v < bumpy.num_vertices(); ++v) {
-    const Vec3 p = bumpy.vertex(v);
-    bumpy.V.row(v) *= 1.0 + 0.2 * std::sin(6.0 * p.x()) * std::cos(4.0 * p.z());
-  }
-  TriMesh folded = make_grid(12, 12, 1.0, 1.0);
-  for (int v = 0; v < folded.num_vertices(); ++v)
-    folded.V(v, 2) = 0.6 * std::abs(folded.V(v, 0) - 0.5) - 0.4 * std::abs(folded.V(v, 1) - 0.5);
+  const TriMesh bumpy = bumpy_sphere(), folded = folded_grid();
   for (const TriMesh& mesh : {make_box(4, 1.0, 2.0, 0.5), bumpy, folded}) {
     const Topology topo = build_topology(mesh);
     const TrianglePlanes planes(mesh.V, mesh.F, &topo);
@@ -189,14 +200,7 @@ TEST_CASE("bends only spare tests: a walk answers the same with or without them"
   // The walk's shortcuts (the start face settling, face_settles later on) may skip neighbours
   // only when they cannot be closer: the answers must be bit-identical to the walk that tries
   // them all, also when it runs out of steps. Convex and concave edges, queries above and below.
-  TriMesh bumpy = make_icosphere(3, 1.0);
-  for (int v = 0; v < bumpy.num_vertices(); ++v) {
-    const Vec3 p = bumpy.vertex(v);
-    bumpy.V.row(v) *= 1.0 + 0.2 * std::sin(6.0 * p.x()) * std::cos(4.0 * p.z());
-  }
-  TriMesh folded = make_grid(12, 12, 1.0, 1.0);
-  for (int v = 0; v < folded.num_vertices(); ++v)
-    folded.V(v, 2) = 0.6 * std::abs(folded.V(v, 0) - 0.5) - 0.4 * std::abs(folded.V(v, 1) - 0.5);
+  const TriMesh bumpy = bumpy_sphere(), folded = folded_grid();
   for (const TriMesh& mesh :
        {bumpy, folded, make_torus(40, 20, 2.0, 0.6), make_box(4, 1.0, 2.0, 0.5)}) {
     const Topology topo = build_topology(mesh);
