@@ -40,9 +40,7 @@ DistanceLayout::DistanceLayout(const Triangles& F, int num_vertices)
 }
 
 double DistanceLayout::mean_edge_length(const Positions& V) const {
-  double sum = 0.0;
-  for (const auto& [a, b] : edges_) sum += (V.row(a) - V.row(b)).norm();
-  return edges_.empty() ? 0.0 : sum / static_cast<double>(edges_.size());
+  return sm::mean_edge_length(V, edges_);
 }
 
 }  // namespace sm

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <optional>
 #include <sstream>
 
@@ -58,24 +57,6 @@ void lawson_update(Eigen::VectorXd& alpha, const Eigen::VectorXd& d_alpha, Eigen
       if (isolated[i]) alpha[i] = 0.0;
 }
 
-// Each undirected edge of F once, sorted (as mean_edge_length counts them).
-std::vector<std::array<int, 2>> unique_edges(const Triangles& F) {
-  std::vector<uint64_t> keys;
-  keys.reserve(static_cast<size_t>(F.rows()) * 3);
-  for (int t = 0; t < F.rows(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      uint32_t a = static_cast<uint32_t>(F(t, k)), b = static_cast<uint32_t>(F(t, (k + 1) % 3));
-      if (a > b) std::swap(a, b);
-      keys.push_back((uint64_t(a) << 32) | b);
-    }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  std::vector<std::array<int, 2>> edges(keys.size());
-  for (size_t e = 0; e < keys.size(); ++e)
-    edges[e] = {static_cast<int>(keys[e] >> 32), static_cast<int>(keys[e] & 0xffffffffu)};
-  return edges;
-}
-
 }  // namespace
 
 // run() works on the template's vertices and triangles relabelled in a banded order
@@ -98,13 +79,6 @@ struct Massager::Impl {
   int num_pinned = 0;
   std::vector<unsigned char> isolated;    // n flags: vertices in no triangle (also pinned)
   int num_isolated = 0;
-
-  double mean_edge_length(const Positions& V) const {
-    if (edges.empty()) return 0.0;
-    double sum = 0.0;
-    for (const auto& e : edges) sum += (V.row(e[0]) - V.row(e[1])).norm();
-    return sum / static_cast<double>(edges.size());
-  }
 };
 
 namespace {
@@ -241,7 +215,7 @@ MassageResult Massager::run(const Positions& start_in, const Reference& referenc
     if (s.isolated[i]) alpha[i] = 0.0;  // no part in the distance energy (and pinned)
   Eigen::VectorXd d_alpha(n), d_beta(W.rows());
 
-  const double move_limit = o.tolerance * s.mean_edge_length(M.V);
+  const double move_limit = o.tolerance * mean_edge_length(M.V, s.edges);
   SparseMatrixR K = s.pattern.shape_matrix();  // values overwritten every iteration
   const std::vector<double> A_values(K.valuePtr(), K.valuePtr() + K.nonZeros());
   std::vector<double> B_values;

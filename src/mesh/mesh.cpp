@@ -16,28 +16,33 @@ double bounding_box_diagonal(const Positions& V) {
 }
 
 double mean_edge_length(const TriMesh& mesh) {
-  // Every interior edge appears in two triangles, a boundary edge in one: count each undirected
-  // edge once by keeping the half-edges with i < j plus the boundary half-edges with i > j whose
-  // twin is absent. Sorting the keys keeps this linearithmic and allocation-light.
+  return mean_edge_length(mesh.V, unique_edges(mesh.F));
+}
+
+std::vector<std::array<int, 2>> unique_edges(const Triangles& F) {
+  // Every interior edge appears in two triangles, a boundary edge in one: one key per half-edge,
+  // (lower, higher) vertex, sorted and deduplicated (linearithmic and allocation-light).
   std::vector<uint64_t> keys;
-  keys.reserve(static_cast<size_t>(mesh.num_triangles()) * 3);
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
+  keys.reserve(static_cast<size_t>(F.rows()) * 3);
+  for (int t = 0; t < F.rows(); ++t)
     for (int k = 0; k < 3; ++k) {
-      uint32_t a = static_cast<uint32_t>(mesh.F(t, k));
-      uint32_t b = static_cast<uint32_t>(mesh.F(t, (k + 1) % 3));
+      uint32_t a = static_cast<uint32_t>(F(t, k)), b = static_cast<uint32_t>(F(t, (k + 1) % 3));
       if (a > b) std::swap(a, b);
       keys.push_back((uint64_t(a) << 32) | b);
     }
-  }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  if (keys.empty()) return 0.0;
+  std::vector<std::array<int, 2>> edges(keys.size());
+  for (size_t e = 0; e < keys.size(); ++e)
+    edges[e] = {static_cast<int>(keys[e] >> 32), static_cast<int>(keys[e] & 0xffffffffu)};
+  return edges;
+}
+
+double mean_edge_length(const Positions& V, const std::vector<std::array<int, 2>>& edges) {
+  if (edges.empty()) return 0.0;
   double sum = 0.0;
-  for (uint64_t k : keys) {
-    const int a = static_cast<int>(k >> 32), b = static_cast<int>(k & 0xffffffffu);
-    sum += (mesh.V.row(a) - mesh.V.row(b)).norm();
-  }
-  return sum / static_cast<double>(keys.size());
+  for (const auto& [a, b] : edges) sum += (V.row(a) - V.row(b)).norm();
+  return sum / static_cast<double>(edges.size());
 }
 
 Eigen::VectorXd triangle_areas(const TriMesh& mesh) {

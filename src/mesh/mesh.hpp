@@ -2,7 +2,9 @@
 /// The plain triangle mesh every module works on: positions (n×3) and triangles (m×3).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
+#include <vector>
 
 namespace sm {
 
@@ -26,6 +28,13 @@ double bounding_box_diagonal(const Positions& V);
 
 /// Mean length of the mesh's edges, each undirected edge counted once (0 for no triangles).
 double mean_edge_length(const TriMesh& mesh);
+
+/// Every undirected edge of F (m×3) once, as (lower vertex, higher vertex), in increasing order.
+std::vector<std::array<int, 2>> unique_edges(const Triangles& F);
+
+/// Mean length at positions V (n×3) of `edges`, summed in their order (with unique_edges(F):
+/// mean_edge_length of (V, F), bit for bit); 0 without edges.
+double mean_edge_length(const Positions& V, const std::vector<std::array<int, 2>>& edges);
 
 /// Area of every triangle (m).
 Eigen::VectorXd triangle_areas(const TriMesh& mesh);
