@@ -1,6 +1,6 @@
 // Reproduces the kinds of experiment of the Mesh Massage paper's Tables 1–3 on the real data of
 // ../shared/data/static (and a cross-parameterization demo), with the remesh, smooth and
-// crossparam jobs, and writes the tables into README.md between the markers
+// crossparam jobs, and writes the tables into docs/paper.md between the markers
 // "<!-- reproduce_paper:begin -->" and "<!-- reproduce_paper:end -->". Not a test: it asserts
 // nothing; it skips with a message when the data is absent.
 //
@@ -196,7 +196,7 @@ void replace_section(const fs::path& readme, const std::string& section) {
 int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
   fs::path out = fs::path(SEQMASSAGE_SOURCE_DIR) / "out" / "reproduce_paper";
-  fs::path readme = fs::path(SEQMASSAGE_SOURCE_DIR) / "README.md";
+  fs::path readme = fs::path(SEQMASSAGE_SOURCE_DIR) / "docs" / "paper.md";
   bool write_readme = true;
   int threads = 0;
   for (int i = 1; i < argc; ++i) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds tools/reproduce_paper and runs it: the paper's kinds of experiment (remeshes of the bunny
 # and the fandisk, smoothing of the fandisk, cross-parameterizations) on ../shared/data, with the
-# tables written into README.md ("Reproducing the paper"). Skips with a message without the data.
+# tables written into docs/paper.md. Skips with a message without the data.
 # Extra arguments go to the program (e.g. --no-readme, --threads 1).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

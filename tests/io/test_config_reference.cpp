@@ -1,4 +1,4 @@
-// The README's configuration reference against the parser: every key the README documents is a
+// The configuration reference (docs/configuration.md) against the parser: every key it lists is a
 // key the parser knows, every key the parser accepts is documented (or refused for that job with
 // a message naming it), and every default the README writes as a JSON value is the one the parser
 // resolves (to_json of a config that leaves the key out).
@@ -89,7 +89,8 @@ std::vector<DocKey> read_reference(const fs::path& readme) {
     }
     if (state == Outside) continue;
     if (line.rfind("|", 0) != 0) {
-      INFO("README.md:" << number << ": a config-keys marker must be followed by its table");
+      INFO("docs/configuration.md:" << number
+                                    << ": a config-keys marker must be followed by its table");
       REQUIRE(state == Rows);
       state = Outside;
       continue;
@@ -104,7 +105,7 @@ std::vector<DocKey> read_reference(const fs::path& readme) {
       continue;
     }
     const std::vector<std::string> cells = split_row(line);
-    INFO("README.md:" << number << ": " << line);
+    INFO("docs/configuration.md:" << number << ": " << line);
     REQUIRE(cells.size() == header.size());
     std::smatch key;
     REQUIRE(std::regex_search(cells[0], key, std::regex(R"(^`([a-z_.]+)`(.*)$)")));
@@ -231,7 +232,7 @@ bool is_refusal(const std::string& message) {
 }
 
 fs::path readme_path() {
-  return fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "README.md";
+  return fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "docs" / "configuration.md";
 }
 
 }  // namespace
@@ -248,7 +249,7 @@ TEST_CASE("the README documents exactly the keys the parser accepts, for every j
     std::map<std::string, std::set<std::string>> children;  // object path ("" = top) -> keys
     for (const DocKey& k : doc) {
       if (!k.jobs.count(job)) continue;
-      INFO("README.md:" << k.line << ": " << k.path << " (job " << job << ")");
+      INFO("docs/configuration.md:" << k.line << ": " << k.path << " (job " << job << ")");
       bool accepted = false;
       for (size_t b = 0; b < resolved_bases.size() && !accepted; ++b)
         if (const json* value = find(resolved_bases[b], k.path)) {
@@ -295,7 +296,8 @@ TEST_CASE("the README's defaults are the parser's") {
   for (const DocKey& k : doc)
     for (const auto& [job, cell] : k.default_of) {
       if (cell.empty() || cell[0] != '`') continue;  // text: "required", "the keyframe times"
-      INFO("README.md:" << k.line << ": " << k.path << " (job " << job << "), default " << cell);
+      INFO("docs/configuration.md:" << k.line << ": " << k.path << " (job " << job << "), default "
+                                    << cell);
       const std::string literal = cell.substr(1, cell.find('`', 1) - 1);
       json expected;
       REQUIRE_NOTHROW(expected = json::parse(literal));
