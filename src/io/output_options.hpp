@@ -71,9 +71,8 @@ struct IterationLogOptions {
   bool enabled = false;
   FrameSelection frames;  ///< "frames": frames logged, default "all"
   /// "shear_frames": frames whose shear is measured after every iteration (logged even when not
-  /// among "frames"), by re-running the optimizer with 1, 2, ..., K − 1 iterations (about
-  /// (K − 1) / 2 times the frame's work for K iterations); the other logged frames get shear at
-  /// iteration 0 and at the last iteration only.
+  /// among "frames"), during the frame's run (one shear measure per iteration); the other
+  /// logged frames get shear at iteration 0 and at the last iteration only.
   FrameSelection shear_frames = FrameSelection::none();
 };
 

@@ -11,6 +11,7 @@
 /// barycentric coordinates of the closest point of M to the sample w_j; δ = 0 as in the paper, or
 /// T's Laplacian turned into the start frame (shape_target.hpp), fixed for the run. The sparsity of
 /// K is A's (with its diagonal) for every iteration, frame and reference: it is analysed once.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -91,6 +92,12 @@ struct MassageResult {
   double seconds = 0.0;
 };
 
+/// Sees each outer iteration as it ends: its figures and M's positions then (n×3, the caller's
+/// labels; valid during the call). Not called for an iteration that fails.
+using IterationObserver = std::function<void(const IterationStats& stats, const Positions& V)>;
+
+struct MassagerState;
+
 /// Everything that depends only on the template T and the connectivity of M: the weights, A,
 /// the fixed sparsity pattern of K and its symbolic analysis, M's topology. Build once, then call
 /// run() for any number of (start, reference) pairs, from any number of threads at once.
@@ -108,8 +115,11 @@ class Massager {
   Massager& operator=(Massager&&) noexcept;
 
   /// Optimizes M, starting at `start` (n×3, the template's connectivity), against `reference`.
-  /// Numerical failures are reported in the result (ok = false), never thrown.
-  MassageResult run(const Positions& start, const Reference& reference) const;
+  /// Numerical failures are reported in the result (ok = false), never thrown. `observer`, if
+  /// given, is called after every iteration (from the calling thread); the iterates are the
+  /// same with or without it.
+  MassageResult run(const Positions& start, const Reference& reference,
+                    const IterationObserver& observer = {}) const;
 
   const MassageOptions& options() const;
   const Topology& topology() const;
@@ -122,8 +132,7 @@ class Massager {
   const TriangleBvh& template_bvh() const;
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<MassagerState> impl_;
 };
 
 }  // namespace sm

@@ -84,12 +84,12 @@ class Run : public ExtrasRun {
     if (out.iterations.enabled && o.result &&
         (out.iterations.frames.contains(o.index) ||
          out.iterations.shear_frames.contains(o.index))) {
-      std::vector<std::optional<DistortionSummary>> shear;
-      if (out.iterations.shear_frames.contains(o.index) && o.result->ok && o.reference)
-        shear = shear_per_iteration(templ_, config_.massage, o.input->mesh.V, *o.reference,
-                                    *o.result, x.warning);
+      const std::vector<std::optional<DistortionSummary>> none;
+      const bool with_shear =
+          out.iterations.shear_frames.contains(o.index) && o.result->ok && o.shear_per_iteration;
       x.iterations = iteration_rows(*o.result, summarize_distortion(*o.shear_before),
-                                    summarize_distortion(*o.shear_after), shear);
+                                    summarize_distortion(*o.shear_after),
+                                    with_shear ? *o.shear_per_iteration : none);
       CsvWriter rows(iteration_columns());
       append_iteration_rows(rows, x.frame, x.file, x.iterations);
       x.iterations_csv = rows.str().substr(header_.size());
@@ -159,6 +159,11 @@ bool FrameExtras::any() const {
   return o.colored.enabled || o.checker.enabled || o.iterations.enabled;
 }
 
+bool FrameExtras::wants_shear_per_iteration(int index) const {
+  const IterationLogOptions& o = config_.output.iterations;
+  return o.enabled && o.shear_frames.contains(index);
+}
+
 std::vector<fs::path> FrameExtras::files(const std::vector<int>& frames) const {
   const OutputConfig& o = config_.output;
   std::vector<fs::path> out;
@@ -207,7 +212,7 @@ std::string FrameExtras::describe(const std::vector<int>& frames) const {
     const int shear = count_in(o.iterations.shear_frames, frames);
     s += "  iterations.csv (the optimized frames among " +
          frames_text(count_in(o.iterations.frames, frames)) + "; shear after every iteration for " +
-         frames_text(shear) + (shear > 0 ? ", re-running the optimizer" : "") + ")\n";
+         frames_text(shear) + ")\n";
   }
   return s;
 }

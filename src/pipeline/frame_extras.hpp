@@ -33,6 +33,9 @@ struct FrameOutcome {
   const Eigen::VectorXd* shear_after = nullptr;   ///< eq. 8 of the output frame
   const MassageResult* result = nullptr;          ///< the optimizer's run; null if not optimized
   const Reference* reference = nullptr;           ///< its reference; null if not optimized
+  /// The shear after every iteration of `result` (shear_observer), for the frames whose
+  /// iterations.csv rows carry it (FrameExtras::wants_shear_per_iteration); else null.
+  const std::vector<std::optional<DistortionSummary>>* shear_per_iteration = nullptr;
 };
 
 /// A frame's encoded extras.
@@ -72,6 +75,9 @@ class FrameExtras {
   std::vector<std::filesystem::path> files(const std::vector<int>& frames) const;
   /// The folders the extras write into (for stale temporary files).
   std::vector<std::filesystem::path> folders() const;
+  /// Whether frame `index`'s iterations.csv rows carry the shear after every iteration
+  /// (output.iterations.shear_frames): the frame's run then takes a shear_observer.
+  bool wants_shear_per_iteration(int index) const;
   /// Plan lines, each "  <file>: <what>\n".
   std::string describe(const std::vector<int>& frames) const;
   /// Warnings for frames listed in a selection that the run does not process.

@@ -3,12 +3,8 @@
 /// the engine's figures (μ, energy, distances both ways, largest move, solver iterations) and,
 /// where measured, the shear distortion (eq. 8) against the template.
 ///
-/// The engine reports distances after every iteration but not positions, so the shear of an
-/// intermediate iterate is measured, for the frames asked, by running the optimizer again with
-/// 1, 2, ..., K − 1 iterations from the same start and reference: its first j iterations are the
-/// full run's, so the result is the j-th iterate exactly. Each re-run is checked against the full
-/// run's iteration j (μ, energy, distances and move, bit for bit); where they differ the shear is
-/// left empty and a warning says so.
+/// The shear of the intermediate iterates is measured, for the frames asked, during the frame's
+/// one run, by an observer of Massager::run (shear_observer) that sees every iterate.
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,13 +40,9 @@ std::vector<IterationRow> iteration_rows(
 void append_iteration_rows(CsvWriter& csv, int frame, const std::string& file,
                            const std::vector<IterationRow>& rows);
 
-/// The shear summary after each iteration j = 1 .. K − 1 of `full` (K = its iteration count; the
-/// last iterate is full.V), by re-running an optimizer built on `templ` with `options` limited to
-/// j iterations from `start` against `reference`. An entry is empty where the re-run failed or
-/// differs from `full` at iteration j; `warning` then says which. Costs about K(K − 1)/2
-/// iterations.
-std::vector<std::optional<DistortionSummary>> shear_per_iteration(
-    const TriMesh& templ, const MassageOptions& options, const Positions& start,
-    const Reference& reference, const MassageResult& full, std::string& warning);
+/// An observer for Massager::run that appends the shear summary (eq. 8 against `templ`, the
+/// caller's labels) of every iterate to `out`, one entry per iteration.
+IterationObserver shear_observer(const TriMesh& templ,
+                                 std::vector<std::optional<DistortionSummary>>& out);
 
 }  // namespace sm

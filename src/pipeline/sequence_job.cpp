@@ -199,6 +199,7 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   bool unchanged = false;
   std::optional<Reference> reference;
   MassageResult result;
+  std::vector<std::optional<DistortionSummary>> shear_per_iteration;  // iterations.csv
   if (w.index == plan.template_frame && !c.templ.optimize) {
     s.status = FrameStatus::Template;
     unchanged = true;
@@ -210,7 +211,10 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     const std::string name = frame_label(plan, w.index);
     reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology(),
                       &plan.massager->template_bvh());
-    result = plan.massager->run(file.mesh.V, *reference);
+    result = plan.extras->wants_shear_per_iteration(w.index)
+                 ? plan.massager->run(file.mesh.V, *reference,
+                                      shear_observer(plan.templ, shear_per_iteration))
+                 : plan.massager->run(file.mesh.V, *reference);
     s.iterations = static_cast<int>(result.iterations.size());
     if (!result.ok) {
       s.status = FrameStatus::Failed;
@@ -249,7 +253,7 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   if (c.output.per_triangle_csv && w.has_output) w.csv = format_distortion_csv(before, after);
   if (plan.extras->any()) {
     w.extras = extras.encode({w.index, &file, &V, &before, &after, reference ? &result : nullptr,
-                              reference ? &*reference : nullptr});
+                              reference ? &*reference : nullptr, &shear_per_iteration});
     // In the frame's warnings, so that its record keeps it (resume, merge).
     if (!w.extras.warning.empty()) s.warnings.insert(s.warnings.begin(), w.extras.warning);
   }

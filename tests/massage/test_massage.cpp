@@ -113,6 +113,35 @@ TEST_CASE("a Massager is reusable and thread-safe, and results are deterministic
   for (const Positions& V : out) CHECK(V == serial.V);  // bitwise equal
 }
 
+TEST_CASE("the iteration observer sees every iterate of the run and changes nothing", "[massage]") {
+  const test::Scenario s = test::bent_tube(16, 20, 1.0, 6.0, 5.0, 0.35, 5);
+  MassageOptions o;
+  o.iterations = 6;
+  o.tolerance = 0.0;
+  const Massager m(s.templ, o);
+  const Reference ref(s.drifted, o.samples, "reference", m.shared_topology());
+  std::vector<IterationStats> seen;
+  std::vector<Positions> iterates;
+  const MassageResult observed =
+      m.run(s.drifted.V, ref, [&](const IterationStats& it, const Positions& V) {
+        seen.push_back(it);
+        iterates.push_back(V);
+      });
+  const MassageResult plain = m.run(s.drifted.V, ref);
+  REQUIRE(observed.ok);
+  CHECK(observed.V == plain.V);  // bitwise
+  REQUIRE(seen.size() == observed.iterations.size());
+  for (size_t k = 0; k < seen.size(); ++k) {
+    CHECK(seen[k].iteration == int(k) + 1);
+    CHECK(seen[k].energy == observed.iterations[k].energy);
+  }
+  CHECK(iterates.back() == observed.V);
+  // The j-th iterate is where a run limited to j iterations ends.
+  MassageOptions three = o;
+  three.iterations = 3;
+  CHECK(Massager(s.templ, three).run(s.drifted.V, ref).V == iterates[2]);
+}
+
 TEST_CASE("the result does not depend on how the caller labels the mesh", "[massage]") {
   // The Massager works in its own (banded) labels: the caller's vertex and triangle order may
   // change the rounding, nothing more. Both runs also keep the caller's labels on the way out.
