@@ -22,7 +22,9 @@
 # so no other Slurm or munge daemon on the machine is touched.
 #
 # Debian 12's Slurm 22.05, as root: ProctrackType=proctrack/linuxproc and TaskPlugin=task/none
-# (no cgroups needed), no accounting, KillWait=30 (SIGTERM, then SIGKILL 30 s later).
+# (no cgroups needed), no accounting, KillWait=30 (SIGTERM, then SIGKILL 30 s later), and
+# batch_sched_delay=0: a job starts at the controller's next second (by default a batch job
+# submitted soon after another waited about 3 s).
 # Exit status: 0 done; 1 the cluster did not start (the logs' ends are printed); 2 usage;
 # 3 Slurm or munge is missing and cannot be installed here (the tests then skip).
 set -euo pipefail
@@ -205,6 +207,7 @@ JobCompType=jobcomp/filetxt
 JobCompLoc=$state/jobcomp.txt
 SelectType=select/cons_tres
 SelectTypeParameters=CR_CPU
+SchedulerParameters=batch_sched_delay=0
 MpiDefault=none
 MailProg=/bin/true
 ReturnToService=2
