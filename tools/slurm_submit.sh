@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Submits a seqmassage sequence job to Slurm as N shards: a job array of tools/slurm_shards.sh
 # (task I runs shard I of N) and a merge job that runs when every task succeeded
-# (--dependency=afterok), then prints the two job ids:
+# (--dependency=afterok), then prints the two job ids (N = 1: the array alone, whose one task
+# writes summary.csv and report.json itself):
 #
 #   bash tools/slurm_submit.sh [sbatch options...] CONFIG.json N [seqmassage options...]
 #   array 1234
@@ -63,9 +64,14 @@ export SEQMASSAGE="$seqmassage"
 array=$(sbatch --parsable --array="0-$((count - 1))" "${sbatch_options[@]}" \
   "$here/slurm_shards.sh" "$config" "$count" "$@")
 array=${array%%;*}
+echo "array $array"
+if [ "$count" = 1 ]; then
+  # One shard is the whole job: the task writes summary.csv and report.json itself.
+  echo "$0: N = 1: no merge job (the task writes summary.csv and report.json)" >&2
+  exit 0
+fi
 merge=$(sbatch --parsable "${sbatch_options[@]}" --job-name=seqmassage-merge --cpus-per-task=1 \
   --dependency="afterok:$array" --kill-on-invalid-dep=yes --output=seqmassage-merge-%j.log \
   --wrap "exec $(printf '%q ' "$seqmassage" merge "$output_dir")")
 merge=${merge%%;*}
-echo "array $array"
 echo "merge $merge"
