@@ -152,7 +152,7 @@ lock_file=$(find duplicate/out -maxdepth 2 -iname '*lock*' 2>/dev/null | head -n
 holder=$(scontrol listpids "$first" 2>/dev/null | awk 'NR > 1 && $1 ~ /^[0-9]+$/ {print $1; exit}')
 second=$(sbatch --parsable "${tasks[@]}" --array=1 --output="$work/logs/duplicate-second-%j.log" \
   "$root/tools/slurm_shards.sh" duplicate/job.json 4)
-record "$second" "duplicate, the second copy (refused by the lock)"
+record "$second" "duplicate, the second copy (the lock must refuse it)"
 second_log="$work/logs/duplicate-second-$second.log"
 # A progress line of a frame it processed (not one kept from the first copy's records).
 second_wrote() { grep '^frame ' "$second_log" 2>/dev/null | grep -vq 'kept from an earlier run'; }
