@@ -47,6 +47,8 @@ extra "clang runtimes" "have_pkg libclang-rt-dev || have_pkg libclang-rt-14-dev"
 extra "OpenMP for clang" "have_pkg libomp-dev || have_pkg libomp-14-dev" libomp-dev
 extra "dpkg-source (oneTBB source for ThreadSanitizer)" "command -v dpkg-source" dpkg-dev
 extra "node and npm" "command -v node && command -v npm" nodejs npm
+# kubectl for the Kubernetes manifest's test; Debian's conflicts with other kubectl packages.
+extra "kubectl" "command -v kubectl" kubernetes-client
 
 # The Khronos glTF-Validator (npm package), used by the glTF output tests when present.
 if command -v npm >/dev/null 2>&1 && [ ! -d "$root/tools/node_modules/gltf-validator" ]; then

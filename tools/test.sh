@@ -4,6 +4,7 @@
 # ThreadSanitizer (tools/tsan.sh). This is the README's test command and all that .ci/run does.
 #   SEQMASSAGE_SKIP_SANITIZERS=1   the Release build only
 #   SEQMASSAGE_SKIP_TSAN=1         no ThreadSanitizer stage
+#   SEQMASSAGE_SKIP_CLUSTER=1      no cluster stage (Slurm end to end, the Kubernetes manifest)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -21,6 +22,18 @@ cmake --build build -j"$jobs"
 stage "Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"
 stage "Release tests"
+
+# The cluster scripts as users submit them: through a local Slurm cluster (installed and started
+# by tools/slurm_local.sh), and the Kubernetes manifest (kubectl, offline). 3: skipped, the
+# script says why.
+if [ "${SEQMASSAGE_SKIP_CLUSTER:-0}" != 1 ]; then
+  for test in slurm k8s_manifest; do
+    status=0
+    bash "tests/tools/test_$test.sh" || status=$?
+    [ "$status" = 0 ] || [ "$status" = 3 ] || exit "$status"
+    stage "cluster: $test"
+  done
+fi
 
 if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEQMASSAGE_ASAN=ON \
