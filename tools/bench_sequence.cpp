@@ -5,8 +5,8 @@
 //     after the other, each timed in CPU time of the thread: read (file and OBJ parse), optimize
 //     (Reference and Massager::run), measure (shear of eq. 8 before and after, Metro-style
 //     distances both ways, sampled as the job's default "measures"), write (corrected OBJ and
-//     per-triangle CSV formatted, hashed for the frame record and written
-//     atomically).
+//     per-triangle CSV formatted and written atomically), hash (SHA-256 of the input and both
+//     outputs, as the frame record holds them).
 //  2. The whole job: `seqmassage CONFIG --quiet` on the crane, with 1 and 2 threads, as a child
 //     process: wall time (planning, reading, writing included), frames/s and peak memory (max
 //     RSS), best of --repeat runs; "cores busy" (CPU / wall) and "frames in progress at once"
@@ -177,7 +177,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const DistanceLayout layout(templ.F, templ.num_vertices());  // as the job's plan
   DistanceWorkspace work;                                      // as the job's pool
   const double setup = thread_seconds() - t_setup;
-  double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
+  double read = 0, optimize = 0, measure = 0, write = 0, hash = 0, shear = 0, distance = 0;
+  double hashed = 0;  // bytes
   int iterations = 0, count = 0;
   size_t hashes = 0;
   fs::create_directories(scratch / "frames");
@@ -222,9 +223,12 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     write_file_atomic(scratch / "frames" / frames[k].filename(), obj);
     write_file_atomic(
         scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"), csv);
-    // The frame record's hashes: the input as read, the two outputs.
-    hashes += sha256_hex(bytes).size() + sha256_hex(obj).size() + sha256_hex(csv).size();
     write += (thread_seconds() - t0);
+
+    t0 = thread_seconds();  // the frame record's hashes: the input as read, the two outputs
+    hashes += sha256_hex(bytes).size() + sha256_hex(obj).size() + sha256_hex(csv).size();
+    hash += (thread_seconds() - t0);
+    hashed += double(bytes.size() + obj.size() + csv.size());
     ++count;
     std::printf(
         "  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
@@ -232,20 +236,22 @@ void stages(const fs::path& crane, const fs::path& scratch) {
         frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, out_to_in.max,
         out_to_in.rms, in_to_out.max, in_to_out.rms, static_cast<int>(result.iterations.size()));
   }
-  const double total = read + optimize + measure + write;
+  const double total = read + optimize + measure + write + hash;
   std::printf(
       "stages, 1 thread, CPU time, %d optimized frames of %d vertices (template setup %.1f ms,"
       " once):\n"
       "  read     %7.1f ms/frame  (%4.1f%%)\n"
       "  optimize %7.1f ms/frame  (%4.1f%%)  %.1f ms per iteration, %.1f iterations/frame\n"
       "  measure  %7.1f ms/frame  (%4.1f%%)  shear %.1f ms, distances %.1f ms\n"
-      "  write    %7.1f ms/frame  (%4.1f%%)  formatted, SHA-256 for the record, written "
-      "atomically\n"
+      "  write    %7.1f ms/frame  (%4.1f%%)  formatted, written atomically\n"
+      "  hash     %7.2f ms/frame  (%4.1f%%)  SHA-256 of the input and outputs for the record, "
+      "%.0f MB/s\n"
       "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
       count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
       1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
       double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
-      1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * total / count,
+      1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * hash / count,
+      100 * hash / total, hashed / hash / 1e6, 1e3 * total / count,
       count / total);
   if (hashes == 0) std::printf("(no frame)\n");
 }
