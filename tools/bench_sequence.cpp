@@ -5,8 +5,8 @@
 //     after the other, each timed in CPU time of the thread: read (file and OBJ parse), optimize
 //     (Reference and Massager::run), measure (shear of eq. 8 before and after, Metro-style
 //     distances both ways, sampled as the job's default "measures"), write (corrected OBJ and
-//     per-triangle CSV formatted, hashed for the frame record and written
-//     atomically).
+//     per-triangle CSV formatted and written atomically), hash (SHA-256 of the input and both
+//     outputs, as the frame record holds them).
 //  2. The whole job: `seqmassage CONFIG --quiet` on the crane, with 1 and 2 threads, as a child
 //     process: wall time (planning, reading, writing included), frames/s and peak memory (max
 //     RSS), best of --repeat runs; "cores busy" (CPU / wall) and "frames in progress at once"
@@ -25,7 +25,7 @@
 //
 //   bench_sequence [--data DIR] [--repeat R] [--long N] [--short N] [--no-memory] [--no-stages]
 //                  [--no-job] [--keep DIR] [--seqmassage PATH] [--tables] [--spacing-table]
-//                  [--iterations-table] [--iterations LIST] [--tolerances LIST]
+//                  [--iterations-table] [--iterations LIST] [--tolerances LIST]   (see --help)
 //
 // --seqmassage times another build's executable (e.g. a baseline) in parts 2 and 3.
 #include <sys/resource.h>
@@ -36,13 +36,16 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
 #include "geometry/distance.hpp"
 #include "geometry/shear.hpp"
 #include "io/atomic_file.hpp"
@@ -177,7 +180,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const DistanceLayout layout(templ.F, templ.num_vertices());  // as the job's plan
   DistanceWorkspace work;                                      // as the job's pool
   const double setup = thread_seconds() - t_setup;
-  double read = 0, optimize = 0, measure = 0, write = 0, shear = 0, distance = 0;
+  double read = 0, optimize = 0, measure = 0, write = 0, hash = 0, shear = 0, distance = 0;
+  double hashed = 0;  // bytes
   int iterations = 0, count = 0;
   size_t hashes = 0;
   fs::create_directories(scratch / "frames");
@@ -222,9 +226,12 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     write_file_atomic(scratch / "frames" / frames[k].filename(), obj);
     write_file_atomic(
         scratch / "distortion" / fs::path(frames[k].filename()).replace_extension(".csv"), csv);
-    // The frame record's hashes: the input as read, the two outputs.
-    hashes += sha256_hex(bytes).size() + sha256_hex(obj).size() + sha256_hex(csv).size();
     write += (thread_seconds() - t0);
+
+    t0 = thread_seconds();  // the frame record's hashes: the input as read, the two outputs
+    hashes += sha256_hex(bytes).size() + sha256_hex(obj).size() + sha256_hex(csv).size();
+    hash += (thread_seconds() - t0);
+    hashed += double(bytes.size() + obj.size() + csv.size());
     ++count;
     std::printf(
         "  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
@@ -232,20 +239,22 @@ void stages(const fs::path& crane, const fs::path& scratch) {
         frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, out_to_in.max,
         out_to_in.rms, in_to_out.max, in_to_out.rms, static_cast<int>(result.iterations.size()));
   }
-  const double total = read + optimize + measure + write;
+  const double total = read + optimize + measure + write + hash;
   std::printf(
       "stages, 1 thread, CPU time, %d optimized frames of %d vertices (template setup %.1f ms,"
       " once):\n"
       "  read     %7.1f ms/frame  (%4.1f%%)\n"
       "  optimize %7.1f ms/frame  (%4.1f%%)  %.1f ms per iteration, %.1f iterations/frame\n"
       "  measure  %7.1f ms/frame  (%4.1f%%)  shear %.1f ms, distances %.1f ms\n"
-      "  write    %7.1f ms/frame  (%4.1f%%)  formatted, SHA-256 for the record, written "
-      "atomically\n"
+      "  write    %7.1f ms/frame  (%4.1f%%)  formatted, written atomically\n"
+      "  hash     %7.2f ms/frame  (%4.1f%%)  SHA-256 of the input and outputs for the record, "
+      "%.0f MB/s\n"
       "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
       count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
       1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
       double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
-      1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * total / count,
+      1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * hash / count,
+      100 * hash / total, hashed / hash / 1e6, 1e3 * total / count,
       count / total);
   if (hashes == 0) std::printf("(no frame)\n");
 }
@@ -255,61 +264,54 @@ void stages(const fs::path& crane, const fs::path& scratch) {
 int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
   fs::path keep;
+  std::string seqmassage = g_seqmassage;
   int repeat = 3, short_frames = 50, long_frames = 1000;
-  bool memory = true, stage_timings = true, job = true, spacing = false, iterations = false;
+  bool no_memory = false, no_stages = false, no_job = false, tables = false, spacing = false,
+       iterations = false;
   std::vector<int> iteration_counts = {5, 8, 10, 12, 15};
   std::vector<double> tolerances = {1e-3, 3e-3};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--data")
-      data = next();
-    else if (a == "--repeat")
-      repeat = std::max(1, std::stoi(next()));
-    else if (a == "--short")
-      short_frames = std::stoi(next());
-    else if (a == "--long")
-      long_frames = std::stoi(next());
-    else if (a == "--no-memory")
-      memory = false;
-    else if (a == "--no-stages")
-      stage_timings = false;
-    else if (a == "--no-job")
-      job = false;
-    else if (a == "--tables")
-      spacing = iterations = true;
-    else if (a == "--spacing-table")
-      spacing = true;
-    else if (a == "--iterations-table")
-      iterations = true;
-    else if (a == "--iterations") {
-      iteration_counts.clear();
-      for (const std::string& item : split_list(next()))
-        iteration_counts.push_back(std::stoi(item));
-    } else if (a == "--tolerances") {
-      tolerances.clear();
-      for (const std::string& item : split_list(next())) tolerances.push_back(std::stod(item));
-    } else if (a == "--keep")
-      keep = next();
-    else if (a == "--seqmassage") {
-      static std::string bin;
-      bin = next();
-      g_seqmassage = bin.c_str();
-    } else {
-      std::fprintf(stderr,
-                   "usage: bench_sequence [--data DIR] [--repeat R] [--short N] [--long N]"
-                   " [--no-memory] [--no-stages] [--no-job] [--keep DIR] [--seqmassage PATH]"
-                   " [--tables] [--spacing-table] [--iterations-table] [--iterations LIST]"
-                   " [--tolerances LIST]\n");
-      return 2;
-    }
-  }
+  CLI::App app(
+      "Usage: bench_sequence [options]\n\n"
+      "The sequence job's per-frame stages on the Vlasic crane (one thread, CPU time), the whole\n"
+      "job as a child process (wall time, peak memory), memory against sequence length and, on\n"
+      "request, the option tables. Prints timings; asserts nothing.\n",
+      "bench_sequence");
+  sm::cli::set_conventions(app, 30);
+  app.add_option("--data", data, "the real data (default ../shared/data)")->type_name("DIR");
+  app.add_option("--repeat", repeat, "whole job: best of R runs (default 3)")
+      ->type_name("R")
+      ->transform(sm::cli::integer_in(1, 1000));
+  app.add_option("--short", short_frames, "memory: the shorter generated sequence (default 50)")
+      ->type_name("N")
+      ->transform(sm::cli::integer_in(2, 100000));
+  app.add_option("--long", long_frames, "memory: the longer generated sequence (default 1000)")
+      ->type_name("N")
+      ->transform(sm::cli::integer_in(2, 100000));
+  app.add_flag("--no-memory", no_memory, "skip memory against sequence length");
+  app.add_flag("--no-stages", no_stages, "skip the per-frame stages");
+  app.add_flag("--no-job", no_job, "skip the whole job");
+  app.add_option("--keep", keep, "scratch folder, kept (default: a temporary one, removed)")
+      ->type_name("DIR");
+  app.add_option("--seqmassage", seqmassage, "the executable timed in the whole job and memory")
+      ->type_name("PATH")
+      ->check(CLI::ExistingFile.description(""));
+  app.add_flag("--tables", tables, "both option tables");
+  app.add_flag("--spacing-table", spacing, "the distances' cost and accuracy per sampling");
+  app.add_flag("--iterations-table", iterations,
+               "quality against massage.iterations and massage.tolerance");
+  app.add_option("--iterations", iteration_counts, "iteration counts of that table (5,8,10,12,15)")
+      ->type_name("LIST")
+      ->delimiter(',')
+      ->transform(sm::cli::integer_in(1, 10000));
+  // massage.tolerance >= 0: above the largest negative double
+  app.add_option("--tolerances", tolerances, "tolerances of that table (1e-3,3e-3)")
+      ->type_name("LIST")
+      ->delimiter(',')
+      ->transform(sm::cli::number_in(-std::numeric_limits<double>::denorm_min(), INFINITY, ">= 0"));
+  if (const auto code = sm::cli::parse_or_exit(app, argc, argv)) return *code;
+  g_seqmassage = seqmassage.c_str();
+  const bool memory = !no_memory, stage_timings = !no_stages, job = !no_job;
+  if (tables) spacing = iterations = true;
   const fs::path scratch =
       keep.empty() ? fs::temp_directory_path() / ("bench_sequence." + std::to_string(::getpid()))
                    : keep;

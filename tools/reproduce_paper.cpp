@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
 #include "geometry/bvh.hpp"
 #include "io/atomic_file.hpp"
 #include "io/mesh_file.hpp"
@@ -197,38 +198,30 @@ int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
   fs::path out = fs::path(SEQMASSAGE_SOURCE_DIR) / "out" / "reproduce_paper";
   fs::path readme = fs::path(SEQMASSAGE_SOURCE_DIR) / "docs" / "paper.md";
-  bool write_readme = true;
+  bool no_readme = false;
   int threads = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "reproduce_paper: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--data")
-      data = value();
-    else if (a == "--out")
-      out = value();
-    else if (a == "--readme")
-      readme = value();
-    else if (a == "--no-readme")
-      write_readme = false;
-    else if (a == "--threads")
-      threads = std::atoi(value().c_str());
-    else {
-      std::fprintf(stderr,
-                   "usage: reproduce_paper [--data DIR] [--out DIR] [--readme FILE | --no-readme] "
-                   "[--threads N]\n");
-      return 2;
-    }
-  }
+  CLI::App app(
+      "Usage: reproduce_paper [options]\n\n"
+      "The paper's Tables 1-3 on the meshes of DIR/static: remeshes, smoothing and\n"
+      "cross-parameterization, run as seqmassage's jobs; the tables go into docs/paper.md.\n",
+      "reproduce_paper");
+  sm::cli::set_conventions(app, 24);
+  app.add_option("--data", data, "the real data (default ../shared/data)")->type_name("DIR");
+  app.add_option("--out", out, "the jobs' outputs (default out/reproduce_paper)")
+      ->type_name("DIR");
+  CLI::Option* readme_given =
+      app.add_option("--readme", readme, "the file the tables go into (default docs/paper.md)")
+          ->type_name("FILE");
+  app.add_flag("--no-readme", no_readme, "print the tables only")->excludes(readme_given);
+  app.add_option("--threads", threads, "worker threads (0 = one per core)")
+      ->type_name("N")
+      ->transform(sm::cli::integer_in(0, 4096));
+  if (const auto code = sm::cli::parse_or_exit(app, argc, argv)) return *code;
+  const bool write_readme = !no_readme;
   const fs::path st = data / "static";
   if (!fs::is_directory(st)) {
     std::printf(
-        "SKIPPED: %s not found (the real meshes of ../shared/data/static; see the README)\n",
+        "SKIPPED: %s not found (the real meshes of ../shared/data/static; see docs/paper.md)\n",
         st.string().c_str());
     return 0;
   }

@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "cli/arguments.hpp"
 #include "io/config.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/measure_files.hpp"
@@ -33,7 +34,7 @@ namespace fs = std::filesystem;
 enum ExitCode : int {
   kOk = 0,
   kInternal = 1,
-  kUsage = 2,  // usage and config errors
+  kUsage = sm::cli::kUsageExit,  // usage and config errors
   kInput = 3,
   kIo = 4,
   kProcessing = 5,
@@ -41,6 +42,8 @@ enum ExitCode : int {
   kTerminated = 143,   // 128 + SIGTERM
 };
 
+// The help of each command: its description (usage, what it does) and footer (outputs, exit
+// status); the options between them are listed from the option definitions below.
 constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
        seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
        seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
@@ -58,27 +61,9 @@ by its "job" key:
   crossparam  copies the triangle shapes of a source mesh onto a target mesh with the same
               connectivity (section 3.2)
   smooth      evens out the triangles while keeping the surface and its sharp features (section 4)
+)";
 
-Options:
-  -h, --help            print this help and exit
-      --version         print the version and exit
-      --threads N       worker threads (overrides "threads"; 0 = one per core; the frames
-                        in flight at once are "frames_in_flight" in the config)
-      --frames A:B[:STEP]
-                        process the frames with index A, A+STEP, ... before B (0-based, in
-                        natural order; B may be empty for "to the end"; a single index N is
-                        N:N+1); overrides "input.range"
-      --dry-run         check the config and every input, print what would be done, write
-                        nothing
-      --resume          skip the frames whose record (records/<frame>.json) shows complete
-                        outputs made with the same config, template and input (sets "resume")
-      --shard I/N       run shard I (0-based) of N: the I-th of N contiguous blocks of the
-                        selected frames (sets "shard"); its summary and report are
-                        summary.shard-I-of-N.csv and report.shard-I-of-N.json, and
-                        'seqmassage merge OUTPUT_DIR' combines the shards
-  -q, --quiet           no progress and no summary; errors and failed frames only
-
-Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
+constexpr const char* kHelpFooter = R"(Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
 with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
 
 Outputs of a sequence, under "output.dir":
@@ -135,12 +120,9 @@ differ), and for "format": "gltf" sequence.glb, assembled from every shard's pos
 config apart from "threads" and "frames_in_flight", template and program: their hashes), and
 that every selected frame is in exactly one shard, with its record and outputs. The shard files
 are left in place.
+)";
 
-Options:
-  -h, --help    print this help and exit
-  -q, --quiet   print nothing but errors
-
-Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
+constexpr const char* kMergeHelpFooter = R"(Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
 the command that redoes them), nothing written; 4 I/O error; 5 merged, but some frames failed
 (as for a run).
 )";
@@ -157,92 +139,28 @@ same report as the remesh, crossparam and smooth jobs write:
     MESH's connectivity (max, mean, p95, histogram);
   - REFERENCE's sharp edges: their distance to MESH, and with the same connectivity the change of
     their dihedral angles.
+)";
 
-Options:
-  -h, --help              print this help and exit
-      --template T        shear of MESH against the mesh T (MESH's connectivity)
-      --spacing X         sample spacing, fraction of the mean edge length (default 0.25)
-      --feature-angle D   dihedral angle in degrees above which an edge is sharp (default 30)
-      --csv FILE          also write the row as CSV (the columns of measures.csv)
-      --json FILE         also write the measures as JSON
-      --threads N         worker threads (0 = one per core)
-
-Exit status: 0 success, 2 usage error, 3 input error (malformed mesh, template of another
+constexpr const char* kMeasureHelpFooter = R"(Exit status: 0 success, 2 usage error, 3 input error (malformed mesh, template of another
 connectivity), 4 I/O error.
 )";
 
-// A usage error of `command` ("seqmassage", "seqmassage measure"): printed with a pointer to its
-// --help, exit 2.
-struct UsageError {
-  std::string command;
-  std::string message;
-};
+using sm::cli::UsageError;
 
-// Help or version printed: exit 0.
-struct InfoShown {};
+// --threads N of every command: an integer in [0, 4096], 0 = one per core.
+CLI::Option* add_threads(CLI::App& app, int& threads, const std::string& description) {
+  return app.add_option("--threads", threads, description)
+      ->type_name("N")
+      ->transform(sm::cli::integer_in(0, 4096));
+}
 
-// Walks a command's arguments: options, whose values are given as "--name VALUE" or
-// "--name=VALUE", and positional arguments ("--" ends the options).
-class ArgReader {
- public:
-  ArgReader(std::string command, int argc, char** argv)
-      : command_(std::move(command)), argc_(argc), argv_(argv) {}
-
-  // The next option's name ("--threads", "-q"), or false when none is left; the positional
-  // arguments on the way are collected.
-  bool next(std::string& option) {
-    while (++i_ < argc_) {
-      std::string a = argv_[i_];
-      inline_value_.reset();
-      if (a == "--") {
-        for (++i_; i_ < argc_; ++i_) positional_.push_back(argv_[i_]);
-        return false;
-      }
-      if (a.size() <= 1 || a[0] != '-') {
-        positional_.push_back(a);
-        continue;
-      }
-      if (a.rfind("--", 0) == 0 && a.find('=') != std::string::npos) {
-        inline_value_ = a.substr(a.find('=') + 1);
-        a = a.substr(0, a.find('='));
-      }
-      option = a;
-      return true;
-    }
-    return false;
-  }
-  bool has_value() const { return inline_value_.has_value(); }
-  // The option's value, inline or the next argument; nullopt if there is none.
-  std::optional<std::string> take() {
-    if (inline_value_) return inline_value_;
-    if (i_ + 1 < argc_) return std::string(argv_[++i_]);
-    return std::nullopt;
-  }
-  // The option's value; a usage error `missing` if there is none.
-  std::string value(const std::string& missing) {
-    const auto v = take();
-    if (!v) fail(missing);
-    return *v;
-  }
-  [[noreturn]] void fail(const std::string& message) const { throw UsageError{command_, message}; }
-  [[noreturn]] void unknown() const { fail("unknown option '" + std::string(argv_[i_]) + "'"); }
-  const std::vector<std::string>& positional() const { return positional_; }
-
- private:
-  std::string command_;
-  int argc_;
-  char** argv_;
-  int i_ = 0;
-  std::optional<std::string> inline_value_;
-  std::vector<std::string> positional_;
-};
-
-// --threads N: an integer in [0, 4096].
-int thread_count(const ArgReader& args, const std::string& v) {
-  if (v.empty() || v.size() > 4 || v.find_first_not_of("0123456789") != std::string::npos ||
-      std::stoi(v) > 4096)
-    args.fail("--threads: expected an integer in [0, 4096], got \"" + v + "\"");
-  return std::stoi(v);
+// "seqmassage 0.1.0 (Eigen 3.4.0, oneTBB 2021.8, nlohmann-json 3.11.2, gcc 12.2.0)"
+std::string version_text() {
+  const nlohmann::json v = sm::version_info();
+  return "seqmassage " + v["seqmassage"].get<std::string>() + " (Eigen " +
+         v["eigen"].get<std::string>() + ", oneTBB " + v["onetbb"].get<std::string>() +
+         ", nlohmann-json " + v["nlohmann_json"].get<std::string>() + ", " +
+         v["compiler"].get<std::string>() + ")\n";
 }
 
 struct Args {
@@ -257,43 +175,51 @@ struct Args {
 
 Args parse_args(int argc, char** argv) {
   Args out;
-  ArgReader args("seqmassage", argc, argv);
-  for (std::string a; args.next(a);) {
-    if (a == "-h" || a == "--help") {
-      std::cout << kHelp;
-      throw InfoShown{};
-    } else if (a == "--version") {
-      const nlohmann::json v = sm::version_info();
-      std::cout << "seqmassage " << v["seqmassage"].get<std::string>() << " (Eigen "
-                << v["eigen"].get<std::string>() << ", oneTBB " << v["onetbb"].get<std::string>()
-                << ", nlohmann-json " << v["nlohmann_json"].get<std::string>() << ", "
-                << v["compiler"].get<std::string>() << ")\n";
-      throw InfoShown{};
-    } else if (a == "--threads") {
-      out.threads = thread_count(args, args.value("--threads needs a value"));
-    } else if (a == "--frames") {
-      out.frames = args.value("--frames needs a value A:B[:STEP]");
-    } else if (a == "--shard") {
-      out.shard = args.value("--shard needs a value I/N");
-    } else if (a == "--resume" && !args.has_value()) {
-      out.resume = true;
-    } else if (a == "--dry-run" && !args.has_value()) {
-      out.dry_run = true;
-    } else if ((a == "-q" || a == "--quiet") && !args.has_value()) {
-      out.quiet = true;
-    } else {
-      args.unknown();
-    }
-  }
-  const std::vector<std::string>& positional = args.positional();
-  if (positional.empty()) args.fail("missing the config file (seqmassage CONFIG.json)");
+  CLI::App app(kHelp, "seqmassage");
+  sm::cli::set_conventions(app, 24);
+  app.footer(kHelpFooter);
+  app.set_version_flag("--version", version_text, "print the version and exit");
+  int threads = 0;
+  std::string frames, shard;
+  std::vector<std::string> positional;
+  const CLI::Option* threads_given =
+      add_threads(app, threads,
+                  "worker threads (overrides \"threads\"; 0 = one per core; the frames\n"
+                  "in flight at once are \"frames_in_flight\" in the config)");
+  const CLI::Option* frames_given =
+      app.add_option("--frames", frames,
+                     "process the frames with index A, A+STEP, ... before B (0-based, in\n"
+                     "natural order; B may be empty for \"to the end\"; a single index N is\n"
+                     "N:N+1); overrides \"input.range\"")
+          ->type_name("A:B[:STEP]");
+  app.add_flag("--dry-run", out.dry_run,
+               "check the config and every input, print what would be done, write\nnothing");
+  app.add_flag("--resume", out.resume,
+               "skip the frames whose record (records/<frame>.json) shows complete\n"
+               "outputs made with the same config, template and input (sets \"resume\")");
+  const CLI::Option* shard_given =
+      app.add_option("--shard", shard,
+                     "run shard I (0-based) of N: the I-th of N contiguous blocks of the\n"
+                     "selected frames (sets \"shard\"); its summary and report are\n"
+                     "summary.shard-I-of-N.csv and report.shard-I-of-N.json, and\n"
+                     "'seqmassage merge OUTPUT_DIR' combines the shards")
+          ->type_name("I/N");
+  app.add_flag("-q,--quiet", out.quiet, "no progress and no summary; errors and failed frames only");
+  app.add_option("CONFIG", positional);
+  sm::cli::parse(app, argc, argv);
+  if (threads_given->count() > 0) out.threads = threads;
+  if (frames_given->count() > 0) out.frames = frames;
+  if (shard_given->count() > 0) out.shard = shard;
+
+  const auto fail = [](const std::string& message) { throw UsageError{"seqmassage", message}; };
+  if (positional.empty()) fail("missing the config file (seqmassage CONFIG.json)");
   if (positional.size() > 1)
-    args.fail("one config file only, got " + std::to_string(positional.size()));
+    fail("one config file only, got " + std::to_string(positional.size()));
   out.config = positional[0];
   std::error_code ec;
   if (!fs::is_regular_file(out.config, ec))
-    args.fail("config file '" + out.config.string() + "' " +
-              (fs::exists(out.config, ec) ? "is not a file" : "does not exist"));
+    fail("config file '" + out.config.string() + "' " +
+         (fs::exists(out.config, ec) ? "is not a file" : "does not exist"));
   return out;
 }
 
@@ -461,61 +387,58 @@ int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
 // "seqmassage measure ..." (argv[0] is "measure").
 sm::MeasureFilesRequest parse_measure_args(int argc, char** argv) {
   sm::MeasureFilesRequest out;
-  ArgReader args("seqmassage measure", argc, argv);
-  // A finite number in (low, high) after --name, else a usage error naming `range`.
-  auto number = [&](const std::string& name, double low, double high, const std::string& range) {
-    const std::string v = args.take().value_or("");
-    try {
-      size_t used = 0;
-      const double x = std::stod(v, &used);
-      if (used == v.size() && std::isfinite(x) && x > low && x < high) return x;
-    } catch (const std::exception&) {
-    }
-    args.fail(name + ": expected a number " + range + ", got \"" + v + "\"");
-  };
-  for (std::string a; args.next(a);) {
-    if (a == "-h" || a == "--help") {
-      std::cout << kMeasureHelp;
-      throw InfoShown{};
-    } else if (a == "--template" || a == "--csv" || a == "--json") {
-      const std::string v = args.take().value_or("");
-      if (v.empty()) args.fail(a + " needs a file name");
-      (a == "--template" ? out.templ : a == "--csv" ? out.csv : out.json) = v;
-    } else if (a == "--spacing") {
-      out.options.spacing = number(a, 0, INFINITY, "> 0");
-    } else if (a == "--feature-angle") {
-      out.options.feature_angle = number(a, 0, 180, "in (0, 180)");
-    } else if (a == "--threads") {
-      out.threads = thread_count(args, args.take().value_or(""));
-    } else {
-      args.unknown();
-    }
-  }
-  if (args.positional().size() != 2)
-    args.fail("expected two mesh files, MESH and REFERENCE, got " +
-              std::to_string(args.positional().size()));
-  out.mesh = args.positional()[0];
-  out.reference = args.positional()[1];
+  CLI::App app(kMeasureHelp, "seqmassage measure");
+  sm::cli::set_conventions(app, 26);
+  app.footer(kMeasureHelpFooter);
+  const CLI::Validator file_name(
+      [](std::string& v) { return v.empty() ? "expected a file name, got \"\"" : ""; }, "");
+  std::string templ, csv, json;
+  std::vector<std::string> positional;
+  app.add_option("--template", templ, "shear of MESH against the mesh T (MESH's connectivity)")
+      ->type_name("T")
+      ->check(file_name);
+  app.add_option("--spacing", out.options.spacing,
+                 "sample spacing, fraction of the mean edge length (default 0.25)")
+      ->type_name("X")
+      ->transform(sm::cli::number_in(0, INFINITY, "> 0"));
+  app.add_option("--feature-angle", out.options.feature_angle,
+                 "dihedral angle in degrees above which an edge is sharp (default 30)")
+      ->type_name("D")
+      ->transform(sm::cli::number_in(0, 180, "in (0, 180)"));
+  app.add_option("--csv", csv, "also write the row as CSV (the columns of measures.csv)")
+      ->type_name("FILE")
+      ->check(file_name);
+  app.add_option("--json", json, "also write the measures as JSON")
+      ->type_name("FILE")
+      ->check(file_name);
+  add_threads(app, out.threads, "worker threads (0 = one per core)");
+  app.add_option("MESH REFERENCE", positional);
+  sm::cli::parse(app, argc, argv);
+  if (positional.size() != 2)
+    throw UsageError{"seqmassage measure", "expected two mesh files, MESH and REFERENCE, got " +
+                                               std::to_string(positional.size())};
+  out.mesh = positional[0];
+  out.reference = positional[1];
+  out.templ = templ;
+  out.csv = csv;
+  out.json = json;
   return out;
 }
 
 // "seqmassage merge [options] OUTPUT_DIR" (argv[0] is "merge").
 int run_merge_command(int argc, char** argv) {
   bool quiet = false;
-  ArgReader args("seqmassage merge", argc, argv);
-  for (std::string a; args.next(a);) {
-    if ((a == "-h" || a == "--help") && !args.has_value()) {
-      std::cout << kMergeHelp;
-      return kOk;
-    } else if ((a == "-q" || a == "--quiet") && !args.has_value()) {
-      quiet = true;
-    } else {
-      args.unknown();
-    }
-  }
-  if (args.positional().size() != 1)
-    args.fail("expected one output folder, got " + std::to_string(args.positional().size()));
-  const fs::path dir = args.positional()[0];
+  std::vector<std::string> positional;
+  CLI::App app(kMergeHelp, "seqmassage merge");
+  sm::cli::set_conventions(app, 16);
+  app.footer(kMergeHelpFooter);
+  app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+  app.add_option("OUTPUT_DIR", positional);
+  sm::cli::parse(app, argc, argv);
+  if (positional.size() != 1)
+    throw UsageError{"seqmassage merge",
+                     "expected one output folder, got " + std::to_string(positional.size())};
+  const fs::path dir = positional[0];
   const sm::MergeResult result = sm::merge_shards(dir);
   if (!quiet) {
     std::cerr << "seqmassage: merged " << result.shards << " shards, " << result.frames.size()
@@ -538,9 +461,8 @@ int guarded(Body&& body, const std::string& config_name) {
   try {
     return body();
   } catch (const UsageError& e) {
-    std::cerr << e.command << ": " << e.message << "\nTry '" << e.command << " --help'.\n";
-    return kUsage;
-  } catch (const InfoShown&) {
+    return sm::cli::report(e);
+  } catch (const sm::cli::InfoShown&) {
     return kOk;
   } catch (const sm::ConfigError& e) {
     const std::string what = e.what();  // command-line options name themselves

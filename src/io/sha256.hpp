@@ -1,11 +1,14 @@
 #pragma once
 /// SHA-256 (FIPS 180-4) of bytes and files, as lowercase hex: the hashes that a sequence job's
 /// frame records hold (config, template, inputs, outputs), so that `sha256sum FILE` checks them.
-#include <array>
-#include <cstdint>
+/// Computed by OpenSSL's EVP interface, which picks the processor's SHA instructions (x86 SHA
+/// extensions, ARMv8 crypto) or its own tuned assembly when there are none.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
+
+struct evp_md_ctx_st;  // OpenSSL's EVP_MD_CTX, kept out of this header
 
 namespace sm {
 
@@ -19,13 +22,10 @@ class Sha256 {
   std::string hex();
 
  private:
-  void block(const unsigned char* p);  // portable
-  /// `count` 64-byte blocks: with the x86 SHA extensions when the processor has them.
-  void blocks(const unsigned char* p, size_t count);
-  std::array<uint32_t, 8> h_;
-  std::array<unsigned char, 64> buffer_{};
-  size_t buffered_ = 0;
-  uint64_t length_ = 0;  // bytes hashed
+  struct FreeContext {
+    void operator()(evp_md_ctx_st* context) const;
+  };
+  std::unique_ptr<evp_md_ctx_st, FreeContext> context_;
   bool done_ = false;
 };
 

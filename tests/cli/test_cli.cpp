@@ -204,6 +204,9 @@ TEST_CASE("usage errors exit with code 2") {
   r = test::run_cli(f.dir.path(), "--threads many job.json");
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: --threads: expected an integer in [0, 4096]"));
+  r = test::run_cli(f.dir.path(), "job.json --threads");
+  CHECK(r.code == 2);
+  CHECK(r.err == "seqmassage: --threads needs a value N\nTry 'seqmassage --help'.\n");
   r = test::run_cli(f.dir.path(), "--frames 4:2 job.json");
   CHECK(r.code == 2);
   CHECK(r.err == "seqmassage: --frames: B must be >= A, got \"4:2\"\n");

@@ -6,8 +6,9 @@ output.colored, output.checker and output.iterations, and checks what a user wou
   - plot_distortion.py on the run's CSVs writes PNG and SVG figures that are valid and not blank;
   - colored/ PLY files read back, their colours equal to the blue-red scale of the per-triangle
     CSV's shear for sampled triangles;
-  - checker/ OBJ + MTL + PNG: the PNG decodes (zlib, CRC-32 of every chunk), the texture
-    coordinates are the same before and after and in every frame;
+  - checker/ OBJ + MTL + PNG: the PNG decodes (zlib, CRC-32 of every chunk, the scanline
+    filters undone) to the checkerboard's colours, the texture coordinates are the same before
+    and after and in every frame;
   - render_mesh.py renders the PLY and the textured OBJ to non-blank PNGs;
   - the same bytes with 1 and 2 threads; a bad option fails with its JSON path.
 
@@ -73,9 +74,33 @@ def decode_png(path):
     raw = zlib.decompress(idat)  # checks the Adler-32 too
     stride = width * channels
     assert len(raw) == height * (stride + 1)
-    rows = [raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)] for y in range(height)]
-    assert all(raw[y * (stride + 1)] == 0 for y in range(height))  # filter 0
-    return width, height, channels, rows
+    return width, height, channels, unfilter(raw, height, stride, channels)
+
+
+def unfilter(raw, height, stride, bpp):
+    """The rows of pixel bytes, each scanline's PNG filter (0 to 4) undone."""
+    rows, prev = [], bytearray(stride)
+    for y in range(height):
+        kind = raw[y * (stride + 1)]
+        assert kind <= 4, "scanline %d: filter type %d" % (y, kind)
+        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b = prev[i]
+            c = prev[i - bpp] if i >= bpp else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:  # Paeth
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return rows
 
 
 def distinct_colours(path):
@@ -177,7 +202,10 @@ class VisualOutputsTest(unittest.TestCase):
             folder = os.path.join(self.run_dir, "checker", side)
             width, height, channels, rows = decode_png(os.path.join(folder, "checker.png"))
             self.assertEqual((width, height, channels), (256, 256, 3))
-            self.assertNotEqual(rows[0][:3], rows[0][32 * 3:32 * 3 + 3])  # two squares differ
+            self.assertEqual(rows[0][:3], bytes([235, 235, 235]))  # light at the top left
+            self.assertEqual(rows[0][32 * 3:32 * 3 + 3], bytes([45, 50, 70]))  # dark beside it
+            self.assertEqual(rows[32][:3], bytes([45, 50, 70]))
+            self.assertEqual(rows[255][255 * 3:], bytes([235, 235, 235]))
             with open(os.path.join(folder, "checker.mtl")) as f:
                 self.assertIn("map_Kd checker.png", f.read())
             for frame in range(FRAMES):
