@@ -49,13 +49,13 @@
 #include "geometry/distance.hpp"
 #include "geometry/shear.hpp"
 #include "io/atomic_file.hpp"
-#include "io/config.hpp"
 #include "io/frame_folder.hpp"
 #include "io/obj.hpp"
 #include "io/sha256.hpp"
 #include "massage/massage.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/report.hpp"
+#include "pipeline/sequence_options.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;

@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "geometry/weights.hpp"
-#include "io/config.hpp"
+#include "config/config.hpp"
 #include "io/mesh_file.hpp"
 #include "massage/massage.hpp"
 #include "mesh/timing.hpp"
@@ -61,15 +61,15 @@ double median(std::vector<double> v) {
 }
 
 // A tube of about n vertices: `segments` around, rings + 1 along, edges of similar length.
-SyntheticConfig tube(int n, int frames) {
-  SyntheticConfig c;
+SyntheticOptions tube(int n, int frames) {
+  SyntheticOptions c;
   c.frames = frames;
   c.segments = std::max(8, static_cast<int>(std::sqrt(n * 0.6)));
   c.rings = std::max(1, n / c.segments - 1);
   return c;
 }
 
-JobConfig job_config(const fs::path& frames, const fs::path& out, int threads) {
+SequenceJobOptions job_config(const fs::path& frames, const fs::path& out, int threads) {
   return parse_config(
       nlohmann::json{{"job", "sequence"},
                      {"threads", threads},
@@ -88,7 +88,7 @@ std::array<Times, 2> measure(const fs::path& frames, const fs::path& out, int co
   Stopwatch w;
   const TriMesh templ = read_mesh(frames / "frame_0000.obj");
   take(w, &Times::templ);
-  JobConfig config = job_config(frames, out, threads);
+  SequenceJobOptions config = job_config(frames, out, threads);
   w = Stopwatch();
   const ShapeWeights weights =
       compute_weights(templ, config.massage.weights, config.massage.boundary_weights);

@@ -34,7 +34,7 @@ const char* kEnd = "<!-- reproduce_paper:end -->";
 
 struct Run {
   std::string label;
-  MeshJobConfig config;
+  MeshJobOptions config;
   MeshJobResult result;
   double seconds = 0.0;
 };
@@ -51,7 +51,7 @@ std::string pct(double x) {
   return fmt("%+.0f%%", 100.0 * x);
 }
 
-Run run_job(const std::string& label, MeshJobConfig c, int threads) {
+Run run_job(const std::string& label, MeshJobOptions c, int threads) {
   c.threads = threads;
   c.output.timings = false;
   const auto t0 = Clock::now();
@@ -68,8 +68,8 @@ Run run_job(const std::string& label, MeshJobConfig c, int threads) {
   return r;
 }
 
-MeshJobConfig remesh_config(const fs::path& mesh, const fs::path& source, const fs::path& out) {
-  MeshJobConfig c;
+MeshJobOptions remesh_config(const fs::path& mesh, const fs::path& source, const fs::path& out) {
+  MeshJobOptions c;
   c.job = JobKind::Remesh;
   c.massage = default_massage_options(c.job);
   c.input.mesh = mesh;
@@ -247,7 +247,7 @@ int main(int argc, char** argv) {
     int k = 0;
     for (const Pair& p : pairs)
       for (SampleKind samples : {SampleKind::Vertices, SampleKind::Edges}) {
-        MeshJobConfig c = remesh_config(p.mesh, p.source, out / ("remesh_" + std::to_string(k++)));
+        MeshJobOptions c = remesh_config(p.mesh, p.source, out / ("remesh_" + std::to_string(k++)));
         c.massage.samples = samples;
         remesh.push_back(run_job(p.label, c, threads));
       }
@@ -273,7 +273,7 @@ int main(int argc, char** argv) {
         {60, SampleKind::Edges, 0.8}};
     k = 0;
     for (const Variant& v : variants) {
-      MeshJobConfig c;
+      MeshJobOptions c;
       c.job = JobKind::Smooth;
       c.massage = default_massage_options(c.job);
       c.massage.iterations = v.iterations;
@@ -307,11 +307,11 @@ int main(int argc, char** argv) {
       target.V = (target.V.array().rowwise() * Eigen::Array<double, 1, 3>(1.3, 1.0, 0.8)).matrix();
       write_mesh(out / "crossparam_input/sphere.obj", templ);
       write_mesh(out / "crossparam_input/ellipsoid_slid.obj", target);
-      MeshJobConfig c;
+      MeshJobOptions c;
       c.job = JobKind::Crossparam;
       c.massage = default_massage_options(c.job);
       c.input.mesh = out / "crossparam_input/ellipsoid_slid.obj";
-      c.template_mesh = out / "crossparam_input/sphere.obj";
+      c.templ.mesh = out / "crossparam_input/sphere.obj";
       c.output.dir = out / "crossparam_sphere";
       cross.push_back(run_job("generated: icosphere → slid ellipsoid", c, threads));
     }
@@ -319,11 +319,11 @@ int main(int argc, char** argv) {
     if (fs::is_directory(horse)) {
       const TriMesh frame6 = read_mesh(horse / "frame_0006.obj");
       write_mesh(out / "crossparam_input/horse_6_slid.obj", slid(frame6, 0.5));
-      MeshJobConfig c;
+      MeshJobOptions c;
       c.job = JobKind::Crossparam;
       c.massage = default_massage_options(c.job);
       c.input.mesh = out / "crossparam_input/horse_6_slid.obj";
-      c.template_mesh = horse / "frame_0000.obj";
+      c.templ.mesh = horse / "frame_0000.obj";
       c.output.dir = out / "crossparam_horse_slid";
       cross.push_back(run_job("horse frame 6, slid 0.5 edge → frame 0", c, threads));
       c.input.mesh = horse / "frame_0006.obj";

@@ -16,7 +16,8 @@
 #include <vector>
 
 #include "cli/arguments.hpp"
-#include "io/config.hpp"
+#include "config/config.hpp"
+#include "config/reference.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/measure_files.hpp"
 #include "pipeline/merge.hpp"
@@ -47,11 +48,13 @@ enum ExitCode : int {
 constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
        seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
        seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
+       seqmassage config --reference
 
 Commands:
   (none)   run the job of CONFIG.json
   measure  print the paper's measures of a mesh against a reference mesh
   merge    combine the shards of a sequence job (--shard I/N) into the outputs of one run
+  config   --reference: print every config key, its type, default and meaning (Markdown)
 
 Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
 by its "job" key:
@@ -291,13 +294,13 @@ void print_results(const fs::path& dir, const std::vector<std::string>& names) {
   std::cout << "results: " << shown(dir) << "/ (" << list << ")\n";
 }
 
-int run_mesh_job(const Args& args, sm::MeshJobConfig config);
+int run_mesh_job(const Args& args, sm::MeshJobOptions config);
 
 int run(const Args& args) {
-  sm::AnyJobConfig any = sm::load_any_config(args.config);
-  if (auto* mesh_job = std::get_if<sm::MeshJobConfig>(&any))
+  sm::AnyJobOptions any = sm::load_any_config(args.config);
+  if (auto* mesh_job = std::get_if<sm::MeshJobOptions>(&any))
     return run_mesh_job(args, std::move(*mesh_job));
-  sm::JobConfig config = std::get<sm::JobConfig>(std::move(any));
+  sm::SequenceJobOptions config = std::get<sm::SequenceJobOptions>(std::move(any));
   if (args.threads) config.threads = *args.threads;
   if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
   if (args.shard) config.shard = sm::parse_shard(*args.shard, "--shard");
@@ -350,7 +353,7 @@ int run(const Args& args) {
 // ---------------------------------------------------------------------------------------------
 // The single-mesh jobs (remesh, crossparam, smooth) and the measure and merge commands.
 
-int run_mesh_job(const Args& args, sm::MeshJobConfig config) {
+int run_mesh_job(const Args& args, sm::MeshJobOptions config) {
   for (const auto& [given, option] :
        {std::pair{args.frames.has_value(), "--frames"},
         std::pair{args.shard.has_value(), "--shard"}, std::pair{args.resume, "--resume"}})
@@ -497,6 +500,16 @@ int main(int argc, char** argv) {
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "merge") return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
+  if (command == "config")
+    return guarded(
+        [&] {
+          if (argc != 3 || std::string(argv[2]) != "--reference")
+            throw UsageError{"seqmassage",
+                             "config takes --reference (the configuration reference)"};
+          std::cout << sm::config_reference();
+          return int(kOk);
+        },
+        "");
   if (command == "measure")
     return guarded(
         [&] {

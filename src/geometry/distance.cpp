@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -259,16 +258,7 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
                                  const Topology* topology_b, const DistanceLayout* layout,
                                  DistanceWorkspace* work) {
   validate_mesh(A, "one_sided_distance (A)");
-  if (!(options.spacing > 0.0) || !std::isfinite(options.spacing)) {
-    std::ostringstream msg;
-    msg << "DistanceOptions::spacing must be a positive number, not " << options.spacing;
-    throw ConfigError(msg.str());
-  }
-  if (!(options.refine_above >= 0.0 && options.refine_above <= 1.0)) {
-    std::ostringstream msg;
-    msg << "DistanceOptions::refine_above must be in [0, 1], not " << options.refine_above;
-    throw ConfigError(msg.str());
-  }
+  check_ranges(options, "measures");  // the ranges of fields_of<DistanceOptions>()
   const int m = A.num_triangles();
   if (m == 0) return DistanceStats{};
   if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");

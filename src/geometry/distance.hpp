@@ -5,12 +5,14 @@
 #include "geometry/distance_workspace.hpp"
 #include "geometry/triangle_planes.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/options_table.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {
 
-/// The defaults are the uniform sampling of the mesh jobs; the sequence job's "measures" default
-/// to adaptive sampling at spacing 0.125 (default_sequence_measures in io/config.hpp).
+/// The defaults are the uniform sampling of the mesh jobs; the sequence job's "measures" (the
+/// table below, without corresponding_triangles, which the job sets) default to adaptive sampling
+/// at spacing 0.125 (default_sequence_measures in pipeline/sequence_options.hpp).
 struct DistanceOptions {
   /// Target spacing of the samples on A, as a fraction of A's mean edge length (> 0). The default
   /// gives about 8 samples per triangle on a regular mesh (Metro's default is 10 per face).
@@ -39,6 +41,34 @@ struct DistanceOptions {
   /// search starts: the distances stay exact.
   bool corresponding_triangles = false;
 };
+
+template <>
+inline const Fields<DistanceOptions>& fields_of<DistanceOptions>() {
+  using O = DistanceOptions;
+  static const Fields<O> fields = {
+      field<&O::spacing>("spacing", above(0),
+                         "samples along the edges and inside the triangles at most this far "
+                         "apart, in mean edge lengths of the sampled frame (with `adaptive`: in "
+                         "the triangles near the maximum)"),
+      field<&O::sample_edges>("sample_edges", any_value(),
+                              "sample along every edge (with `adaptive`: of the refined "
+                              "triangles)"),
+      field<&O::sample_faces>("sample_faces", any_value(),
+                              "sample inside every triangle, a barycentric lattice (with "
+                              "`adaptive`: of the refined triangles)"),
+      field<&O::adaptive>("adaptive", any_value(),
+                          "adaptive sampling: every vertex and centroid first (RMS: "
+                          "area-weighted integral over the frame), then only the triangles near "
+                          "the maximum at twice `spacing` and at `spacing`; `false`: every "
+                          "triangle at `spacing`, RMS of the samples"),
+      field<&O::refine_above>("refine_above", closed(0, 1),
+                              "with `adaptive`: a triangle is sampled at twice `spacing` when "
+                              "its samples reach this fraction of the largest sample, and at "
+                              "`spacing` when they then reach its square root (0: every "
+                              "triangle with a nonzero distance)"),
+  };
+  return fields;
+}
 
 /// Distances from the samples on A to B. The relative values are divided by the diagonal of the
 /// bounding box of both meshes' vertices together (as Metro does), so the two directions of a

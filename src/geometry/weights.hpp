@@ -3,6 +3,7 @@
 /// a template mesh T, and the shape matrix A = I − Λ of eq. 6.
 #include <Eigen/SparseCore>
 
+#include "mesh/enum_names.hpp"
 #include "mesh/mesh.hpp"
 
 namespace sm {
@@ -14,6 +15,8 @@ enum class WeightKind {
   MeanValue,  ///< Floater's mean value coordinates: positive, reproduce planar one-rings
   Uniform,    ///< 1/valence: equalizes triangles (the paper's smoothing, §4)
 };
+inline constexpr EnumName<WeightKind> kWeightKindNames[] = {{"mean_value", WeightKind::MeanValue},
+                                                            {"uniform", WeightKind::Uniform}};
 
 /// How vertices on a boundary loop are weighted.
 enum class BoundaryWeights {
@@ -26,6 +29,8 @@ enum class BoundaryWeights {
   /// so the boundary keeps the template's spacing along itself.
   Curve,
 };
+inline constexpr EnumName<BoundaryWeights> kBoundaryWeightsNames[] = {
+    {"curve", BoundaryWeights::Curve}, {"one_sided", BoundaryWeights::OneSided}};
 
 struct ShapeWeights {
   /// Λ, n×n: row i holds λ_ij ≥ 0 over i's neighbours j, summing to 1 (an isolated vertex has an

@@ -73,10 +73,8 @@ int default_mesh(const GltfFile& file) {
 std::vector<double> frame_times(const GltfInputOptions& options, const GltfRig& rig) {
   const std::vector<double>& keys = rig.keyframe_times;
   if (!options.fps) return keys;
+  check_ranges(options, "input");  // fps in its table's range
   const double fps = *options.fps;
-  if (!std::isfinite(fps) || fps <= 0) {
-    throw ConfigError("input.fps: must be a positive number, got " + std::to_string(fps));
-  }
   const double span = keys.back() - keys.front();
   if (span * fps + 1 > kMaxFrames) {
     throw ConfigError("input.fps: " + std::to_string(fps) + " frames per second over " +

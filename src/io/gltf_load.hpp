@@ -9,6 +9,7 @@
 
 #include "io/gltf_weld.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/options_table.hpp"
 
 namespace sm {
 
@@ -28,6 +29,33 @@ struct GltfInputOptions {
   std::optional<int> mesh_index = std::nullopt;
   std::optional<int> animation_index = std::nullopt;
 };
+
+/// The keys sit in the sequence job's "input", beside "range"; "gltf" comes first (it says the
+/// input is a glTF animation).
+template <>
+inline const Fields<GltfInputOptions>& fields_of<GltfInputOptions>() {
+  using O = GltfInputOptions;
+  static const Fields<O> fields = {
+      field<&O::file>("gltf", any_value(),
+                      "a glTF 2.0 animation (skinned or morph-target, `.gltf` or `.glb`) "
+                      "sampled to frames"),
+      selector_field<&O::mesh, &O::mesh_index>(
+          "mesh",
+          "`meshes[]` of the glTF file; `null`: the mesh of the first node with a skin, else the "
+          "first mesh with morph targets, else the first mesh a node instantiates; only with "
+          "`input.gltf`"),
+      selector_field<&O::animation, &O::animation_index>(
+          "animation",
+          "`animations[]` of the glTF file; `null`: the first animation (index 0); only with "
+          "`input.gltf`"),
+      field<&O::fps>("fps", left_open(0, 1e6),
+                     "frames at `t0 + k/fps` (t0 the first keyframe time) up to the last keyframe "
+                     "time; `null`: one frame per distinct keyframe time of the animation's "
+                     "samplers; more than 10⁷ frames, or frame times equal as float32, are a "
+                     "config error; only with `input.gltf`"),
+  };
+  return fields;
+}
 
 struct GltfScene;  // io/gltf_scene.hpp: the source asset, rig and mesh geometry
 

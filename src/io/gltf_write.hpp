@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/gltf_load.hpp"
+#include "mesh/options_table.hpp"
 
 namespace sm {
 
@@ -21,6 +22,21 @@ struct GltfWriteOptions {
   /// compute flat normals, halving the file).
   bool normals = true;
 };
+
+template <>
+inline const Fields<GltfWriteOptions>& fields_of<GltfWriteOptions>() {
+  using O = GltfWriteOptions;
+  static const Fields<O> fields = {
+      field<&O::frames_per_mesh>("frames_per_mesh", closed(1, 100000),
+                                 "morph targets per mesh of `sequence.glb`; longer sequences are "
+                                 "split over meshes shown in turn"),
+      field<&O::normals>("normals", any_value(),
+                         "NORMAL/TANGENT morph deltas that turn the source's normals with the "
+                         "corrected surface; `false` writes positions only (viewers compute "
+                         "flat normals)"),
+  };
+  return fields;
+}
 
 struct GltfWriteReport {
   int frames = 0;

@@ -17,14 +17,7 @@ void check_options(const MassageOptions& o, int n) {
   auto bad = [](const std::string& key, const std::string& why) {
     throw ConfigError("massage." + key + ": " + why);
   };
-  if (o.iterations < 1) bad("iterations", "must be >= 1");
-  if (o.mu && !(*o.mu >= 0.0 && *o.mu < 1.0)) bad("mu", "must be \"auto\" or in [0, 1)");
-  if (!(o.tolerance >= 0.0)) bad("tolerance", "must be >= 0");
-  if (!(o.lawson_floor > 0.0 && o.lawson_floor < 1.0)) bad("lawson_floor", "must be in (0, 1)");
-  if (!(o.solver_tolerance > 0.0 && o.solver_tolerance < 1.0))
-    bad("solver_tolerance", "must be in (0, 1)");
-  if (o.solver_max_iterations < 1) bad("solver_max_iterations", "must be >= 1");
-  if (o.walk_max_steps < 0) bad("walk_max_steps", "must be >= 0");
+  check_ranges(o, "massage");  // the ranges of fields_of<MassageOptions>()
   for (int v : o.pinned)
     if (v < 0 || v >= n)
       bad("pinned", "vertex " + std::to_string(v) + " is out of range (the mesh has " +

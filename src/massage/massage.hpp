@@ -20,6 +20,7 @@
 #include "geometry/weights.hpp"
 #include "massage/reference.hpp"
 #include "massage/shape_target.hpp"
+#include "mesh/options_table.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {
@@ -60,6 +61,75 @@ struct MassageOptions {
   bool pin_boundary = false;   ///< "pin_boundary": boundary vertices of M keep their position
   std::vector<int> pinned;     ///< "pinned": vertex indices of M that keep their position
 };
+
+inline constexpr EnumName<SolverKind> kSolverKindNames[] = {{"iterative", SolverKind::Iterative},
+                                                            {"direct", SolverKind::Direct}};
+inline constexpr EnumName<ClosestPointMode> kClosestPointModeNames[] = {
+    {"local", ClosestPointMode::Local}, {"exact", ClosestPointMode::Exact}};
+
+template <>
+inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
+  using O = MassageOptions;
+  static const Fields<O> fields = {
+      field<&O::weights>("weights", choice(kWeightKindNames),
+                         "the weights λ of eq. 1 (§2.1), computed once on T: mean value "
+                         "coordinates keep T's triangle shapes, uniform weights even the "
+                         "triangles out"),
+      field<&O::boundary_weights>("boundary_weights", choice(kBoundaryWeightsNames),
+                                  "boundary vertices: 1-D weights over their two boundary "
+                                  "neighbours, by edge length (reproduces a straight boundary), "
+                                  "or Floater's formula on the triangles present (pulls open "
+                                  "boundaries inwards)"),
+      field<&O::shape_target>("shape_target", choice(kShapeTargetKindNames),
+                              "the right-hand side δ of the shape system A v = δ (eq. 6): "
+                              "`\"zero\"` is the paper's δ = 0; `\"template\"` is T's own "
+                              "Laplacian turned ring by ring into the start frame, so that a "
+                              "frame with T's triangle shapes is left as it is. Smoothing needs "
+                              "`\"zero\"`: its T is M itself"),
+      field<&O::iterations>("iterations", at_least(1),
+                            "outer iterations (solve, closest points, Lawson update); the paper "
+                            "finds 10 to 15 enough (§2.3)"),
+      field<&O::mu>("mu", auto_or(right_open(0, 1)),
+                    "μ of eq. 7, the weight of triangle shape against distance; `\"auto\"`: "
+                    "‖B‖_F / (3‖A‖_F + ‖B‖_F), the paper's choice, every iteration"),
+      field<&O::samples>("samples", choice(kSampleKindNames),
+                         "the samples w_j of N in the distance term (eq. 4): N's vertices; also "
+                         "every edge midpoint (`\"edges\"`); also every triangle centroid "
+                         "(`\"faces\"`)"),
+      field<&O::tolerance>("tolerance", at_least(0),
+                           "stop before `iterations` when no vertex moved more than this times "
+                           "M's mean edge length in an iteration"),
+      field<&O::lawson>("lawson", any_value(),
+                        "Lawson's reweighting of α, β after each iteration (eq. 5), which turns "
+                        "the 2-norm into an approximation of the Hausdorff distance; `false` "
+                        "keeps them at 1 (eq. 3)"),
+      field<&O::lawson_floor>("lawson_floor", open(0, 1),
+                              "α, β are normalized by their joint mean and kept at least this "
+                              "times it, so B stays definite"),
+      field<&O::solver>("solver", choice(kSolverKindNames),
+                        "`\"iterative\"`: BiCGSTAB with ILU(0) on the fixed pattern, "
+                        "warm-started, sparse LU as fall-back; `\"direct\"`: sparse LU every "
+                        "iteration"),
+      field<&O::solver_tolerance>("solver_tolerance", open(0, 1),
+                                  "relative residual ‖R − K X‖ / ‖R‖ (each column) at which "
+                                  "BiCGSTAB stops; a looser value costs the outer iterations "
+                                  "accuracy"),
+      field<&O::solver_max_iterations>("solver_max_iterations", at_least(1),
+                                       "BiCGSTAB iterations before the LU fall-back"),
+      field<&O::closest_points>("closest_points", choice(kClosestPointModeNames),
+                                "`\"local\"`: walk from the previous correspondence over "
+                                "adjacent triangles (§2.2.1), exact BVH query as fall-back; "
+                                "`\"exact\"`: a BVH query for every point in every iteration"),
+      field<&O::walk_max_steps>("walk_max_steps", at_least(0),
+                                "moves of the local walk before the exact query"),
+      field<&O::pin_boundary>("pin_boundary", any_value(),
+                              "boundary vertices of M keep their position exactly"),
+      field<&O::pinned>("pinned", indices("vertex indices"),
+                        "0-based vertex indices of M that keep their position exactly, below "
+                        "M's vertex count (for glTF input: of the welded vertices)"),
+  };
+  return fields;
+}
 
 /// What one outer iteration did (all distances in model units).
 struct IterationStats {

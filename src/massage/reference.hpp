@@ -5,6 +5,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/triangle_planes.hpp"
+#include "mesh/enum_names.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
 
@@ -16,6 +17,8 @@ enum class SampleKind {
   Edges,     ///< the vertices and the midpoint of every edge
   Faces,     ///< the vertices, edge midpoints and the centroid of every triangle
 };
+inline constexpr EnumName<SampleKind> kSampleKindNames[] = {
+    {"vertices", SampleKind::Vertices}, {"edges", SampleKind::Edges}, {"faces", SampleKind::Faces}};
 
 /// N, prepared once and then shared read-only by any number of concurrent Massager::run calls.
 class Reference {

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "geometry/weights.hpp"
+#include "mesh/enum_names.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
 
@@ -41,6 +42,8 @@ enum class ShapeTargetKind {
   Zero,      ///< δ = 0, the paper's eq. 6
   Template,  ///< δ_i = R_i (A T)_i, T's Laplacian turned ring by ring into the start frame
 };
+inline constexpr EnumName<ShapeTargetKind> kShapeTargetKindNames[] = {
+    {"zero", ShapeTargetKind::Zero}, {"template", ShapeTargetKind::Template}};
 
 /// The per-template part of the rotated target: built once per template, then evaluate() per run.
 class ShapeTarget {

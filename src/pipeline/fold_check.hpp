@@ -4,12 +4,36 @@
 /// decided exactly, triangle by triangle: output triangle t is folded when its normal opposes the
 /// normal of the same triangle t in the input frame (n_out · n_in < 0), unless t was already
 /// degenerate or folded in the input (then its input normal says nothing about the surface).
+#include <optional>
 #include <string>
 
 #include "mesh/mesh.hpp"
+#include "mesh/options_table.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {
+
+/// "checks": when an optimized frame fails, besides a failed solve and non-finite positions
+/// (which always fail it): when its folded triangles (below) exceed either limit. Real captures
+/// give a few per frame at most.
+struct FrameCheckOptions {
+  std::optional<int> max_folded_triangles;            ///< empty: no limit
+  std::optional<double> max_folded_fraction = 0.005;  ///< of the frame's triangles; empty: none
+};
+
+template <>
+inline const Fields<FrameCheckOptions>& fields_of<FrameCheckOptions>() {
+  using O = FrameCheckOptions;
+  static const Fields<O> fields = {
+      field<&O::max_folded_triangles>("max_folded_triangles", at_least(0),
+                                      "a frame with more folded triangles fails; `0` tolerates "
+                                      "none; `null`: no limit"),
+      field<&O::max_folded_fraction>("max_folded_fraction", closed(0, 1),
+                                     "a frame whose folded triangles exceed this fraction of its "
+                                     "triangles fails; `null`: no limit"),
+  };
+  return fields;
+}
 
 struct FoldCount {
   int folded = 0;  ///< output triangles whose normal opposes their input normal

@@ -40,8 +40,8 @@ std::string frames_text(int n) {
 
 class Run : public ExtrasRun {
  public:
-  Run(const JobConfig& config, std::shared_ptr<const FrameSource> source, const TriMesh& templ,
-      std::string template_source, std::optional<CornerUv> uv)
+  Run(const SequenceJobOptions& config, std::shared_ptr<const FrameSource> source,
+      const TriMesh& templ, std::string template_source, std::optional<CornerUv> uv)
       : config_(config),
         source_(std::move(source)),
         templ_(templ),
@@ -50,7 +50,7 @@ class Run : public ExtrasRun {
         header_(CsvWriter(iteration_columns()).str()) {}
 
   ExtraFrame encode(const FrameOutcome& o) const override {
-    const OutputConfig& out = config_.output;
+    const OutputOptions& out = config_.output;
     ExtraFrame x;
     x.frame = o.index;
     x.file = source_->name(o.index);
@@ -117,7 +117,7 @@ class Run : public ExtrasRun {
   void keep(const std::string& iterations_csv) override { rows_ += iterations_csv; }
 
   json finish() override {
-    const OutputConfig& out = config_.output;
+    const OutputOptions& out = config_.output;
     json r = json::object();
     if (out.colored.enabled)
       r["colored"] = {
@@ -139,7 +139,7 @@ class Run : public ExtrasRun {
   }
 
  private:
-  JobConfig config_;
+  SequenceJobOptions config_;
   std::shared_ptr<const FrameSource> source_;
   TriMesh templ_;
   std::string template_source_;
@@ -151,11 +151,12 @@ class Run : public ExtrasRun {
 
 }  // namespace
 
-FrameExtras::FrameExtras(const JobConfig& config, std::shared_ptr<const FrameSource> source)
+FrameExtras::FrameExtras(const SequenceJobOptions& config,
+                         std::shared_ptr<const FrameSource> source)
     : config_(config), source_(std::move(source)) {}
 
 bool FrameExtras::any() const {
-  const OutputConfig& o = config_.output;
+  const OutputOptions& o = config_.output;
   return o.colored.enabled || o.checker.enabled || o.iterations.enabled;
 }
 
@@ -165,7 +166,7 @@ bool FrameExtras::wants_shear_per_iteration(int index) const {
 }
 
 std::vector<fs::path> FrameExtras::files(const std::vector<int>& frames) const {
-  const OutputConfig& o = config_.output;
+  const OutputOptions& o = config_.output;
   std::vector<fs::path> out;
   for (const char* side : {"before", "after"}) {
     for (int i : frames) {
@@ -185,7 +186,7 @@ std::vector<fs::path> FrameExtras::files(const std::vector<int>& frames) const {
 }
 
 std::vector<fs::path> FrameExtras::folders() const {
-  const OutputConfig& o = config_.output;
+  const OutputOptions& o = config_.output;
   std::vector<fs::path> out;
   for (const char* side : {"before", "after"}) {
     if (o.colored.enabled) out.push_back(o.dir / "colored" / side);
@@ -195,7 +196,7 @@ std::vector<fs::path> FrameExtras::folders() const {
 }
 
 std::string FrameExtras::describe(const std::vector<int>& frames) const {
-  const OutputConfig& o = config_.output;
+  const OutputOptions& o = config_.output;
   std::string s;
   if (o.colored.enabled)
     s += "  colored/{before,after}/<name>.ply (" + frames_text(count_in(o.colored.frames, frames)) +
@@ -218,7 +219,7 @@ std::string FrameExtras::describe(const std::vector<int>& frames) const {
 }
 
 std::vector<std::string> FrameExtras::check(const std::vector<int>& frames) const {
-  const OutputConfig& o = config_.output;
+  const OutputOptions& o = config_.output;
   std::vector<std::string> warnings;
   const auto unlisted = [&](const FrameSelection& selection, bool enabled, const std::string& key) {
     if (!enabled || selection.kind != FrameSelection::Kind::List) return;

@@ -14,11 +14,11 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "io/config.hpp"
 #include "massage/massage.hpp"
 #include "pipeline/checker.hpp"
 #include "pipeline/frame_source.hpp"
 #include "pipeline/iteration_log.hpp"
+#include "pipeline/sequence_options.hpp"
 
 namespace sm {
 
@@ -67,7 +67,7 @@ class ExtrasRun {
 
 class FrameExtras {
  public:
-  FrameExtras(const JobConfig& config, std::shared_ptr<const FrameSource> source);
+  FrameExtras(const SequenceJobOptions& config, std::shared_ptr<const FrameSource> source);
 
   /// Whether any extra output is enabled.
   bool any() const;
@@ -87,7 +87,7 @@ class FrameExtras {
   std::unique_ptr<ExtrasRun> start(const SequencePlan& plan) const;
 
  private:
-  JobConfig config_;
+  SequenceJobOptions config_;
   std::shared_ptr<const FrameSource> source_;
 };
 

@@ -90,7 +90,7 @@ fs::path record_file(const fs::path& output_dir, const std::string& frame_name) 
   return output_dir / "records" / fs::path(frame_name).replace_extension(".json");
 }
 
-std::string frame_config_hash(const JobConfig& config) {
+std::string frame_config_hash(const SequenceJobOptions& config) {
   json j = to_json(config);
   for (const char* key : {"threads", "frames_in_flight", "shard", "resume"}) j.erase(key);
   j["input"].erase("range");

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/config.hpp"
 #include "pipeline/sequence_job.hpp"
+#include "pipeline/sequence_options.hpp"
 
 namespace sm {
 
@@ -44,7 +44,7 @@ std::filesystem::path record_file(const std::filesystem::path& output_dir,
 /// SHA-256 of everything in `config` that decides a frame's outputs and summary row: the resolved
 /// config (to_json) without the keys that do not (threads, frames_in_flight, input.range,
 /// output.dir, output.timings, shard, resume), and the program's version_info().
-std::string frame_config_hash(const JobConfig& config);
+std::string frame_config_hash(const SequenceJobOptions& config);
 
 /// SHA-256 of the template's positions and triangles (exact bytes).
 std::string template_hash(const TriMesh& templ);

@@ -68,7 +68,7 @@ class ObjSink : public FrameSink {
 
 class GlbWriter : public FileWriter {
  public:
-  GlbWriter(const JobConfig& config, std::shared_ptr<const FrameSource> source)
+  GlbWriter(const SequenceJobOptions& config, std::shared_ptr<const FrameSource> source)
       : config_(config), source_(std::move(source)) {}
 
   std::vector<std::string> finish() override {
@@ -77,13 +77,13 @@ class GlbWriter : public FileWriter {
   }
 
  private:
-  const JobConfig& config_;
+  const SequenceJobOptions& config_;
   std::shared_ptr<const FrameSource> source_;
 };
 
 class GlbSink : public FrameSink {
  public:
-  GlbSink(const JobConfig& config, std::shared_ptr<const FrameSource> source)
+  GlbSink(const SequenceJobOptions& config, std::shared_ptr<const FrameSource> source)
       : config_(config), source_(std::move(source)) {}
 
   std::vector<fs::path> files(const std::vector<int>& frames) const override {
@@ -114,13 +114,13 @@ class GlbSink : public FrameSink {
   }
 
  private:
-  const JobConfig config_;
+  const SequenceJobOptions config_;
   std::shared_ptr<const FrameSource> source_;
 };
 
 }  // namespace
 
-std::shared_ptr<const FrameSink> make_frame_sink(const JobConfig& config,
+std::shared_ptr<const FrameSink> make_frame_sink(const SequenceJobOptions& config,
                                                  std::shared_ptr<const FrameSource> source) {
   switch (config.output.format) {
     case OutputFormat::Obj:
@@ -133,7 +133,8 @@ std::shared_ptr<const FrameSink> make_frame_sink(const JobConfig& config,
   throw std::logic_error("make_frame_sink: unknown output format");
 }
 
-std::vector<std::string> assemble_sequence_glb(const JobConfig& config, const FrameSource& source,
+std::vector<std::string> assemble_sequence_glb(const SequenceJobOptions& config,
+                                               const FrameSource& source,
                                                const std::vector<int>& frames) {
   const fs::path glb = config.output.dir / "sequence.glb";
   if (frames.empty())

@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/config.hpp"
 #include "pipeline/frame_source.hpp"
+#include "pipeline/sequence_options.hpp"
 
 namespace sm {
 
@@ -59,14 +59,15 @@ class FrameSink {
 /// holds the frames in flight and the GLB being assembled, never all frames as well. A shard of a
 /// sharded run (config.shard) writes the positions only; `seqmassage merge` assembles the GLB.
 /// Throws ConfigError for "gltf" with a source that is not a glTF animation.
-std::shared_ptr<const FrameSink> make_frame_sink(const JobConfig& config,
+std::shared_ptr<const FrameSink> make_frame_sink(const SequenceJobOptions& config,
                                                  std::shared_ptr<const FrameSource> source);
 
 /// Writes output.dir/sequence.glb (see write_gltf_sequence) of the frames `frames` (in order) of
 /// `source`, a glTF animation, from their positions files. Returns warnings (none, or that no frame
 /// was given, so nothing was written). Throws IoError when a positions file is missing or has
 /// the wrong size, or the GLB cannot be written.
-std::vector<std::string> assemble_sequence_glb(const JobConfig& config, const FrameSource& source,
+std::vector<std::string> assemble_sequence_glb(const SequenceJobOptions& config,
+                                               const FrameSource& source,
                                                const std::vector<int>& frames);
 
 }  // namespace sm

@@ -68,7 +68,7 @@ class ObjFolderSource : public FrameSource {
 
 class SyntheticSource : public ObjFolderSource {
  public:
-  SyntheticSource(const SyntheticConfig& config, const fs::path& output_dir)
+  SyntheticSource(const SyntheticOptions& config, const fs::path& output_dir)
       : ObjFolderSource(output_dir / "input", {}),
         sequence_(make_synthetic_sequence(config)),
         ground_truth_dir_(output_dir / "ground_truth") {
@@ -248,8 +248,8 @@ std::string FrameSource::fetch(int) const {
   return {};
 }
 
-std::shared_ptr<const FrameSource> make_frame_source(const JobConfig& config) {
-  const InputConfig& in = config.input;
+std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config) {
+  const InputOptions& in = config.input;
   if (in.synthetic) return std::make_shared<SyntheticSource>(*in.synthetic, config.output.dir);
   if (in.gltf) return std::make_shared<GltfSource>(*in.gltf);
   return std::make_shared<ObjFolderSource>(in.frames);

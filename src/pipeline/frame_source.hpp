@@ -11,10 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/config.hpp"
 #include "io/gltf_load.hpp"
 #include "io/obj.hpp"
 #include "mesh/mesh.hpp"
+#include "pipeline/sequence_options.hpp"
 
 namespace sm {
 
@@ -78,7 +78,7 @@ class FrameSource {
 /// The source of the config's input ("frames", "synthetic" or "gltf"). A glTF file is loaded,
 /// welded and checked here; other sources list or generate nothing yet. Throws like the loaders:
 /// IoError, InputError naming the file and element, ConfigError for invalid values.
-std::shared_ptr<const FrameSource> make_frame_source(const JobConfig& config);
+std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config);
 
 /// "frame 7 (frame_0007.obj)", with ", t = 0.25 s" for a frame with a time: how messages name a
 /// frame (FrameSource::label).

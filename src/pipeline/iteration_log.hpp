@@ -12,8 +12,32 @@
 #include "geometry/shear.hpp"
 #include "io/csv.hpp"
 #include "massage/massage.hpp"
+#include "mesh/frame_selection.hpp"
+#include "mesh/options_table.hpp"
 
 namespace sm {
+
+/// "output.iterations": iterations.csv, one row per logged frame and iteration (0 = the input).
+struct IterationLogOptions {
+  bool enabled = false;
+  FrameSelection frames;  ///< frames logged
+  /// Frames whose shear is measured after every iteration of their one run (logged even when not
+  /// among `frames`); the other logged frames get shear at iteration 0 and the last iteration.
+  FrameSelection shear_frames = FrameSelection::none();
+};
+
+template <>
+inline const Fields<IterationLogOptions>& fields_of<IterationLogOptions>() {
+  using O = IterationLogOptions;
+  static const Fields<O> fields = {
+      field<&O::frames>("frames", any_value(), "optimized frames logged"),
+      field<&O::shear_frames>("shear_frames", any_value(),
+                              "frames whose shear is measured after every iteration (one "
+                              "shear measure per iteration of the frame's run); the others get "
+                              "shear at iteration 0 and at the last iteration only"),
+  };
+  return fields;
+}
 
 /// One row: iteration 0 is the input frame (no engine figures; distances 0, as the optimized
 /// mesh starts on the reference surface), iteration k ≥ 1 the state after the k-th solve.

@@ -143,6 +143,7 @@ MeshMeasures measure_mesh(const TriMesh& mesh, const MeasureReference& reference
   const bool identical = same_connectivity && mesh.V == N.V;
   DistanceOptions sampling;
   sampling.spacing = o.spacing;
+  sampling.adaptive = o.adaptive;
   const TriangleBvh mesh_bvh(mesh);
   if (!identical) {
     m.to_reference = one_sided_distance(mesh, reference.bvh(), sampling);

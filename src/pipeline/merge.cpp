@@ -6,6 +6,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
+#include "io/options_json.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/frame_sink.hpp"
@@ -20,7 +21,7 @@ using json = nlohmann::json;
 namespace {
 
 struct ShardReport {
-  ShardConfig shard;
+  ShardOptions shard;
   std::string file;  // report.shard-I-of-N.json
   json report;
   std::vector<std::pair<int, std::string>> frames;  // (index, name) in order
@@ -145,7 +146,8 @@ MergeResult merge_shards(const fs::path& output_dir) {
   const int N = shards.front().shard.count;
   const ShardReport& ref = shards.front();
   const ReportHeader header = report_header_from_json(ref.report);
-  const JobConfig config = parse_config(header.config, dir);
+  SequenceJobOptions config;  // as the shards' reports resolved it (their configs were checked)
+  read_options(header.config, config, dir);
   std::vector<std::string> problems;
 
   // Names of every frame, for the messages (from the shards, else from the input if it can be
@@ -187,7 +189,7 @@ MergeResult merge_shards(const fs::path& output_dir) {
   for (const ShardReport& s : shards) by_index[s.shard.index] = &s;
   std::map<int, std::string> owner;  // frame -> shard file
   for (int i = 0; i < N; ++i) {
-    const ShardConfig shard{i, N};
+    const ShardOptions shard{i, N};
     const std::vector<int> block = shard_frames(selected, shard);
     const auto it = by_index.find(i);
     const std::string rerun = "seqmassage --shard " + format_shard(shard) + " --resume CONFIG";
@@ -283,7 +285,7 @@ MergeResult merge_shards(const fs::path& output_dir) {
     for (const FrameSummary& f : result.frames)
       if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip))
         with_output.push_back(f.frame);
-    JobConfig whole = config;
+    SequenceJobOptions whole = config;
     whole.output.dir = dir;
     for (std::string& w : assemble_sequence_glb(whole, *input_source(), with_output))
       result.warnings.push_back(std::move(w));

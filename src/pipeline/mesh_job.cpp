@@ -15,6 +15,7 @@
 #include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/mesh_report.hpp"
+#include "pipeline/run_text.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
@@ -66,7 +67,7 @@ std::string alignment_warning(const MeshJobPlan& plan) {
 }
 
 void check_outputs(const MeshJobPlan& plan) {
-  const MeshJobConfig& c = plan.config;
+  const MeshJobOptions& c = plan.config;
   auto canonical = [](const fs::path& p) {
     std::error_code ec;  // a path that cannot be resolved is compared as written
     const fs::path resolved = fs::weakly_canonical(p, ec);
@@ -74,7 +75,7 @@ void check_outputs(const MeshJobPlan& plan) {
   };
   std::set<fs::path> inputs = {canonical(c.input.mesh)};
   if (!c.input.reference.empty()) inputs.insert(canonical(c.input.reference));
-  if (!c.template_mesh.empty()) inputs.insert(canonical(c.template_mesh));
+  if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
   std::vector<fs::path> outputs = {plan.output_mesh, c.output.dir / "measures.csv",
                                    c.output.dir / "report.json"};
   if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / "triangles.csv");
@@ -96,7 +97,7 @@ std::string output_text(const MeshJobPlan& plan, const Positions& V) {
 
 }  // namespace
 
-fs::path mesh_output_path(const MeshJobConfig& config) {
+fs::path mesh_output_path(const MeshJobOptions& config) {
   fs::path name = config.input.mesh.filename();
   switch (config.output.format) {
     case MeshOutputFormat::Same:
@@ -114,10 +115,10 @@ fs::path mesh_output_path(const MeshJobConfig& config) {
   return config.output.dir / name;
 }
 
-MeshJobPlan plan_mesh_job(const MeshJobConfig& config) {
+MeshJobPlan plan_mesh_job(const MeshJobOptions& config) {
   MeshJobPlan plan;
   plan.config = config;
-  const MeshJobConfig& c = plan.config;
+  const MeshJobOptions& c = plan.config;
   plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
 
   plan.mesh_name = c.input.mesh.filename().string();
@@ -145,10 +146,10 @@ MeshJobPlan plan_mesh_job(const MeshJobConfig& config) {
   }
 
   if (c.job == JobKind::Crossparam) {
-    plan.template_name = c.template_mesh.filename().string();
-    if (plan.template_name == plan.mesh_name) plan.template_name = c.template_mesh.string();
-    plan.templ = read_mesh(c.template_mesh);
-    validate_mesh(plan.templ, c.template_mesh.string().c_str());
+    plan.template_name = c.templ.mesh.filename().string();
+    if (plan.template_name == plan.mesh_name) plan.template_name = c.templ.mesh.string();
+    plan.templ = read_mesh(c.templ.mesh);
+    validate_mesh(plan.templ, c.templ.mesh.string().c_str());
     if (std::string problem = connectivity_mismatch(plan); !problem.empty())
       throw InputError(problem);
   } else {
@@ -188,7 +189,7 @@ MeshJobPlan plan_mesh_job(const MeshJobConfig& config) {
 }
 
 std::string describe_mesh_plan(const MeshJobPlan& plan) {
-  const MeshJobConfig& c = plan.config;
+  const MeshJobOptions& c = plan.config;
   std::ostringstream s;
   auto counts = [](const TriMesh& m) {
     return std::to_string(m.num_vertices()) + " vertices, " + std::to_string(m.num_triangles()) +
@@ -201,14 +202,11 @@ std::string describe_mesh_plan(const MeshJobPlan& plan) {
   else
     s << "reference (N): the mesh as loaded\n";
   if (c.job == JobKind::Crossparam)
-    s << "template (T): " << c.template_mesh.string() << ", " << counts(plan.templ) << "\n";
+    s << "template (T): " << c.templ.mesh.string() << ", " << counts(plan.templ) << "\n";
   else
     s << "template (T): the mesh itself\n";
-  const nlohmann::json m = to_json(c)["massage"];
-  const std::string mu = m["mu"].is_string() ? m["mu"].get<std::string>() : m["mu"].dump();
-  s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
-    << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>() << ", solver "
-    << m["solver"].get<std::string>() << ", " << plan.pinned_vertices << " pinned vertices\n";
+  s << "massage: " << massage_text(c.massage) << ", " << plan.pinned_vertices
+    << " pinned vertices\n";
   s << "threads: " << plan.threads << "\n";
   s << "output: " << c.output.dir.string() << "\n";
   s << "  " << plan.output_mesh.filename().string() << ", measures.csv, report.json"
@@ -219,7 +217,7 @@ std::string describe_mesh_plan(const MeshJobPlan& plan) {
 
 MeshJobResult run_mesh_job(const MeshJobPlan& plan) {
   const auto t0 = Clock::now();
-  const MeshJobConfig& c = plan.config;
+  const MeshJobOptions& c = plan.config;
   const fs::path& out = c.output.dir;
   MeshJobResult result;
   result.warnings = plan.warnings;

@@ -15,17 +15,17 @@
 #include <string>
 #include <vector>
 
-#include "io/config.hpp"
 #include "io/obj.hpp"
 #include "io/ply.hpp"
 #include "massage/massage.hpp"
 #include "pipeline/measures.hpp"
+#include "pipeline/mesh_job_options.hpp"
 
 namespace sm {
 
 /// Everything a run needs, checked: built by plan_mesh_job without writing anything.
 struct MeshJobPlan {
-  MeshJobConfig config;
+  MeshJobOptions config;
   TriMesh mesh;                ///< M as loaded
   std::optional<ObjFile> obj;  ///< the OBJ file as read, to write back (OBJ input only)
   PlyColors colors;            ///< colours of a PLY input, kept in a PLY output
@@ -56,7 +56,7 @@ struct MeshJobResult {
 /// Reads the mesh (and the reference or template), checks them (connectivity of the template,
 /// mesh validity, options such as pinned indices) and builds the Massager; refuses an output that
 /// would overwrite an input. Throws ConfigError, InputError (naming the file) or IoError.
-MeshJobPlan plan_mesh_job(const MeshJobConfig& config);
+MeshJobPlan plan_mesh_job(const MeshJobOptions& config);
 
 /// What a run of `plan` would do, several lines of text (for --dry-run).
 std::string describe_mesh_plan(const MeshJobPlan& plan);
@@ -68,6 +68,6 @@ MeshJobResult run_mesh_job(const MeshJobPlan& plan);
 
 /// The output mesh's path for `config`: <output.dir>/<input file name>, with the extension of
 /// output.format unless it is "same".
-std::filesystem::path mesh_output_path(const MeshJobConfig& config);
+std::filesystem::path mesh_output_path(const MeshJobOptions& config);
 
 }  // namespace sm

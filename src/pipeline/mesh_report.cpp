@@ -294,7 +294,7 @@ std::string format_triangles_csv(const TriangleMeasures& before, const TriangleM
 }
 
 json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
-  const MeshJobConfig& c = plan.config;
+  const MeshJobOptions& c = plan.config;
   json r;
   r["versions"] = version_info();
   r["config"] = to_json(c);
@@ -312,7 +312,7 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
                                          {"mean", json_number(reference_quality.mean)}};
   inputs["template"] = counts(plan.templ);
   inputs["template"]["file"] =
-      c.job == JobKind::Crossparam ? json(c.template_mesh.string()) : json("the mesh itself");
+      c.job == JobKind::Crossparam ? json(c.templ.mesh.string()) : json("the mesh itself");
   inputs["template"]["weight_fallback_vertices"] = plan.massager->weights().fallback_vertices;
   inputs["pinned_vertices"] = plan.pinned_vertices;
   r["inputs"] = inputs;

@@ -98,11 +98,11 @@ void append_frame_warnings(const FrameSummary& f, OnFailure on_failure,
 }
 
 ReportHeader report_header(const SequencePlan& plan) {
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   ReportHeader h;
   h.versions = version_info();
-  JobConfig job = c;
-  job.shard = ShardConfig{};
+  SequenceJobOptions job = c;
+  job.shard = ShardOptions{};
   job.resume = false;
   h.config = to_json(job);
   h.input = plan.source->report();
@@ -248,7 +248,7 @@ ShearMeans mean_shear(const std::vector<FrameSummary>& frames) {
 }
 
 std::vector<std::string> run_output_names(const SequencePlan& plan, const SequenceResult& result) {
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   std::vector<std::string> names;
   if (c.output.format == OutputFormat::Gltf) {
     names.push_back("positions/");
@@ -268,7 +268,7 @@ std::vector<std::string> run_output_names(const SequencePlan& plan, const Sequen
 }
 
 json make_report(const SequencePlan& plan, const SequenceResult& result) {
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   ReportHeader header = report_header(plan);
   header.outputs.update(result.extra_outputs);  // colored, checker, iterations
   json run;

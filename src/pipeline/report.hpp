@@ -7,8 +7,8 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "io/config.hpp"
 #include "pipeline/sequence_job.hpp"
+#include "pipeline/sequence_options.hpp"
 
 namespace sm {
 

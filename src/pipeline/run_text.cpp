@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
 
@@ -94,6 +96,14 @@ std::string mesh_job_end_text(const MeshJobResult& result) {
   return std::to_string(result.massage.iterations.size()) + " iterations in " +
          fixed_text(result.seconds_massage, 2) + " s (whole run " + fixed_text(result.seconds, 2) +
          " s)";
+}
+
+std::string massage_text(const MassageOptions& m) {
+  return std::string(name_of(m.weights, kWeightKindNames)) + " weights, " +
+         std::to_string(m.iterations) + " iterations, mu " +
+         (m.mu ? nlohmann::json(*m.mu).dump() : "auto") + ", samples " +
+         std::string(name_of(m.samples, kSampleKindNames)) + ", solver " +
+         std::string(name_of(m.solver, kSolverKindNames));
 }
 
 }  // namespace sm

@@ -33,6 +33,10 @@ std::string resume_text(const SequenceResult& result);
 /// "12 frames in 3.4 s (0 failed), mean shear 0.2777 -> 0.0177".
 std::string run_end_text(const SequenceResult& result);
 
+/// "mean_value weights, 15 iterations, mu auto, samples vertices, solver iterative" (the dry
+/// runs' "massage:" line).
+std::string massage_text(const MassageOptions& options);
+
 /// "remesh a.off (1000 vertices), 15 iterations, 4 threads".
 std::string mesh_job_start_text(const MeshJobPlan& plan);
 

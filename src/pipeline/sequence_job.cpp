@@ -24,6 +24,7 @@
 #include "pipeline/frame_extras.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
+#include "pipeline/run_text.hpp"
 #include "pipeline/shard.hpp"
 
 namespace sm {
@@ -88,7 +89,7 @@ fs::path distortion_file(const SequencePlan& plan, int index) {
 
 // Refuses an output file that is one of the inputs.
 void check_outputs(const SequencePlan& plan) {
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   std::set<fs::path> inputs;
   auto canonical = [](const fs::path& p) {
     std::error_code ec;  // a path that cannot be resolved is compared as written
@@ -158,7 +159,7 @@ std::string check_output(const SequencePlan& plan, const TriMesh& input, const P
   const FoldCount folds =
       count_folded_triangles(plan.templ.F, plan.massager->topology(), input.V, V);
   s.folded_triangles = folds.folded;
-  const FrameChecks& checks = plan.config.checks;
+  const FrameCheckOptions& checks = plan.config.checks;
   const int m = static_cast<int>(plan.templ.F.rows());
   std::string over;
   if (checks.max_folded_triangles && folds.folded > *checks.max_folded_triangles)
@@ -180,7 +181,7 @@ void write_record(const SequencePlan& plan, const Work& w) {
 
 void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   const auto t0 = Clock::now();
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   const SourceFrame file = plan.source->decode(w.index, std::move(w.bytes));
   if (std::string problem = connectivity_mismatch(plan, w.index, file.mesh); !problem.empty())
     throw InputError(problem);
@@ -287,7 +288,7 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
 // outputs, which the serial stage writes in frame order (the checker texture comes with the first
 // checker frame), the record waits for them there (write_record). Frees the encoded bytes.
 void write_frame_files(const SequencePlan& plan, Work& w) {
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   const fs::path& out = c.output.dir;
   std::error_code ec;
   fs::remove(record_file(out, plan.source->name(w.index)), ec);
@@ -321,10 +322,10 @@ const char* status_name(FrameStatus status) {
   return "";
 }
 
-SequencePlan plan_sequence_job(const JobConfig& config) {
+SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
   SequencePlan plan;
   plan.config = config;
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
   plan.frames_in_flight = c.frames_in_flight > 0 ? c.frames_in_flight : 2 * plan.threads;
 
@@ -376,7 +377,7 @@ SequencePlan plan_sequence_job(const JobConfig& config) {
 }
 
 std::string describe_plan(const SequencePlan& plan) {
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   std::ostringstream s;
   s << "job: sequence\n";
   s << "input: " << plan.source->describe() << "\n";
@@ -407,11 +408,7 @@ std::string describe_plan(const SequencePlan& plan) {
   if (plan.template_frame >= 0)
     s << (c.templ.optimize ? "; optimized like the others" : "; written unchanged");
   s << "\n";
-  const nlohmann::json m = to_json(c)["massage"];
-  const std::string mu = m["mu"].is_string() ? m["mu"].get<std::string>() : m["mu"].dump();
-  s << "massage: " << m["weights"].get<std::string>() << " weights, " << m["iterations"]
-    << " iterations, mu " << mu << ", samples " << m["samples"].get<std::string>() << ", solver "
-    << m["solver"].get<std::string>() << "\n";
+  s << "massage: " << massage_text(c.massage) << "\n";
   if (c.measures.adaptive)
     s << "distances (summary.csv): adaptive, at the vertices and centroids, then"
       << (c.measures.sample_edges ? " along the edges" : "")
@@ -438,7 +435,7 @@ std::string describe_plan(const SequencePlan& plan) {
 
 SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks) {
   const auto t0 = Clock::now();
-  const JobConfig& c = plan.config;
+  const SequenceJobOptions& c = plan.config;
   const fs::path& out = c.output.dir;
   SequenceResult result;
   result.warnings = plan.warnings;

@@ -14,10 +14,10 @@
 
 #include "geometry/distance.hpp"
 #include "geometry/shear.hpp"
-#include "io/config.hpp"
 #include "massage/massage.hpp"
 #include "pipeline/frame_sink.hpp"
 #include "pipeline/frame_source.hpp"
+#include "pipeline/sequence_options.hpp"
 
 namespace sm {
 
@@ -66,7 +66,7 @@ struct FrameSummary {
 
 /// Everything a run needs, checked: built by plan_sequence_job without writing anything.
 struct SequencePlan {
-  JobConfig config;
+  SequenceJobOptions config;
   std::shared_ptr<const FrameSource> source;  ///< every input frame, in order
   std::shared_ptr<const FrameSink> sink;      ///< where the corrected frames go
   std::shared_ptr<const FrameExtras> extras;  ///< colored, checker and iterations outputs
@@ -116,7 +116,7 @@ struct RunHooks {
 /// builds the template's Massager, and refuses an output folder that would overwrite an input.
 /// Throws ConfigError, InputError (naming the frame and the counts, or the glTF file and element)
 /// or IoError. Writes nothing.
-SequencePlan plan_sequence_job(const JobConfig& config);
+SequencePlan plan_sequence_job(const SequenceJobOptions& config);
 
 /// What a run of `plan` would do, several lines of text (for --dry-run).
 std::string describe_plan(const SequencePlan& plan);

@@ -60,16 +60,16 @@ Vec3 bent_point(double theta, double s, double r, double kappa) {
 
 }  // namespace
 
-SyntheticSequence make_synthetic_sequence(const SyntheticConfig& config) {
-  if (config.frames < 2 || config.segments < 3 || config.rings < 1 || !(config.radius > 0.0) ||
-      !(config.length > 0.0))
+void check_synthetic_options(const SyntheticOptions& options) {
+  check_ranges(options, "input.synthetic");
+  if (options.bend * M_PI / 180.0 * options.radius >= options.length)
     throw ConfigError(
-        "input.synthetic: needs frames >= 2, segments >= 3, rings >= 1 and a "
-        "positive radius and length");
-  if (config.bend * M_PI / 180.0 * config.radius >= config.length)
-    throw ConfigError(
-        "input.synthetic.bend: the tube would fold onto itself (bend in radians "
-        "times radius must stay below length)");
+        "input.synthetic.bend: the tube would fold onto itself: bend (in radians) times radius "
+        "must stay below length");
+}
+
+SyntheticSequence make_synthetic_sequence(const SyntheticOptions& config) {
+  check_synthetic_options(config);
   SyntheticSequence seq;
   seq.config = config;
   const int nu = config.segments;
@@ -94,7 +94,7 @@ SyntheticSequence make_synthetic_sequence(const SyntheticConfig& config) {
 }
 
 SyntheticFrame synthetic_frame(const SyntheticSequence& seq, int t) {
-  const SyntheticConfig& c = seq.config;
+  const SyntheticOptions& c = seq.config;
   if (t < 0 || t >= c.frames)
     throw InputError("synthetic frame " + std::to_string(t) + " does not exist (" +
                      std::to_string(c.frames) + " frames)");

@@ -5,17 +5,59 @@
 #include <filesystem>
 #include <string>
 
-#include "io/config.hpp"
 #include "io/obj.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/options_table.hpp"
 
 namespace sm {
+
+enum class SyntheticShape {
+  BendingTube,  ///< "bending_tube"
+};
+inline constexpr EnumName<SyntheticShape> kSyntheticShapeNames[] = {
+    {"bending_tube", SyntheticShape::BendingTube}};
+
+/// "input.synthetic": the generated drifted sequence (frame 0 straight and undrifted).
+struct SyntheticOptions {
+  SyntheticShape shape = SyntheticShape::BendingTube;
+  int frames = 24;
+  int segments = 32;  ///< vertices around the tube
+  int rings = 48;     ///< segments along the tube
+  double radius = 0.5;
+  double length = 4.0;
+  double bend = 90.0;  ///< bend angle of the last frame, degrees
+  double drift = 0.6;  ///< slide amplitude, in edge lengths
+  int seed = 1;        ///< seed of the drift field
+};
+
+template <>
+inline const Fields<SyntheticOptions>& fields_of<SyntheticOptions>() {
+  using O = SyntheticOptions;
+  static const Fields<O> fields = {
+      field<&O::shape>("shape", choice(kSyntheticShapeNames), "the generated shape"),
+      field<&O::frames>("frames", closed(2, 100000), "number of frames"),
+      field<&O::segments>("segments", closed(3, 100000), "vertices around the tube"),
+      field<&O::rings>("rings", closed(1, 100000), "segments along the tube"),
+      field<&O::radius>("radius", above(0), "tube radius"),
+      field<&O::length>("length", above(0),
+                        "tube length; the bend (in radians) times the radius must stay below it, "
+                        "or the tube would fold onto itself"),
+      field<&O::bend>("bend", closed(0, 300), "bend angle of the last frame, degrees"),
+      field<&O::drift>("drift", closed(0, 2), "slide amplitude, in edge lengths"),
+      field<&O::seed>("seed", at_least(0), "seed of the drift field"),
+  };
+  return fields;
+}
+
+/// Throws ConfigError (naming the key, "input.synthetic.bend: ...") for a value outside its
+/// table's range or a tube that would fold onto itself (bend · radius >= length).
+void check_synthetic_options(const SyntheticOptions& options);
 
 /// What every frame shares: the tube's triangles (mesh/primitives make_cylinder layout: vertex
 /// j·segments + i sits at angle 2πi/segments on ring j) and its texture coordinates, (segments+1)
 /// × (rings+1) of them so that the seam gets its own column (u = 1).
 struct SyntheticSequence {
-  SyntheticConfig config;
+  SyntheticOptions config;
   Triangles F;
   TexCoords uv;
   Triangles F_uv;  ///< per triangle corner, the row of `uv`
@@ -32,8 +74,8 @@ struct SyntheticFrame {
   Positions drifted;
 };
 
-/// The shared connectivity. Throws ConfigError for an invalid config (see parse_config).
-SyntheticSequence make_synthetic_sequence(const SyntheticConfig& config);
+/// The shared connectivity. Throws ConfigError for invalid options (check_synthetic_options).
+SyntheticSequence make_synthetic_sequence(const SyntheticOptions& config);
 
 /// Frame t in [0, config.frames). Same config and t, same bytes.
 SyntheticFrame synthetic_frame(const SyntheticSequence& sequence, int t);

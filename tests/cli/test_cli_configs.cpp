@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <string>
 
-#include "support/cli_process.hpp"
+#include "config/config.hpp"
 #include "io/atomic_file.hpp"
-#include "io/config.hpp"
+#include "support/cli_process.hpp"
 #include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -29,10 +29,10 @@ TEST_CASE("every config in configs/ passes seqmassage --dry-run and writes nothi
       ++skipped;
       continue;
     }
-    const sm::AnyJobConfig any = sm::load_any_config(entry.path());
-    const fs::path out = std::holds_alternative<sm::JobConfig>(any)
-                             ? std::get<sm::JobConfig>(any).output.dir
-                             : std::get<sm::MeshJobConfig>(any).output.dir;
+    const sm::AnyJobOptions any = sm::load_any_config(entry.path());
+    const fs::path out = std::holds_alternative<sm::SequenceJobOptions>(any)
+                             ? std::get<sm::SequenceJobOptions>(any).output.dir
+                             : std::get<sm::MeshJobOptions>(any).output.dir;
     const bool existed = fs::exists(out);
     const sm::test::CliRun run =
         sm::test::run_cli(cwd.path(), "--dry-run " + sm::test::shell_quote(entry.path().string()));

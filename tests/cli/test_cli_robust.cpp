@@ -93,7 +93,7 @@ int require_complete_files(const fs::path& out, int vertices) {
 
 TEST_CASE("SIGKILL at random moments leaves complete files; --resume ends with the same bytes") {
   test::TempDir dir("cli_kill");
-  SyntheticConfig tube = test::small_tube(30);
+  SyntheticOptions tube = test::small_tube(30);
   tube.segments = 24;
   tube.rings = 24;
   write_synthetic_sequence(make_synthetic_sequence(tube), dir / "in", dir / "gt");
@@ -140,7 +140,7 @@ TEST_CASE("SIGKILL at random moments leaves complete files; --resume ends with t
 
 TEST_CASE("SIGTERM stops after the frames in flight with exit 143, and --resume finishes") {
   test::TempDir dir("cli_term");
-  SyntheticConfig tube = test::small_tube(200);
+  SyntheticOptions tube = test::small_tube(200);
   tube.segments = 24;
   tube.rings = 24;
   write_synthetic_sequence(make_synthetic_sequence(tube), dir / "in", dir / "gt");

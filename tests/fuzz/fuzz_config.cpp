@@ -1,9 +1,10 @@
-// Fuzz target: the config loader (io/config.hpp): strict JSON, then the mapping onto JobConfig.
+// Fuzz target: the config loader (config/config.hpp): strict JSON, then the mapping onto
+// SequenceJobOptions.
 #include <string>
 #include <string_view>
 
+#include "config/config.hpp"
 #include "fuzz_targets.hpp"
-#include "io/config.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm::fuzz {
@@ -25,7 +26,7 @@ void fuzz_config(const uint8_t* data, size_t size) {
   }
   expect(plain == document, "strict JSON and nlohmann-json parse the text differently");
 
-  JobConfig config;
+  SequenceJobOptions config;
   try {
     config = parse_config(document, "/fuzz/configs");
   } catch (const ConfigError&) {
@@ -33,7 +34,7 @@ void fuzz_config(const uint8_t* data, size_t size) {
   }
   // The resolved config parses back to itself (documented for to_json).
   const nlohmann::json resolved = to_json(config);
-  JobConfig again;
+  SequenceJobOptions again;
   try {
     again = parse_config(resolved, "/elsewhere");
   } catch (const ConfigError& e) {

@@ -32,10 +32,10 @@ namespace {
 
 // A folder of drifted frames under `dir`/in, a job on it writing to `dir`/out with every visual
 // output on.
-JobConfig visual_job(const fs::path& dir, int frames = 5) {
-  SyntheticConfig s = test::small_tube(frames);
+SequenceJobOptions visual_job(const fs::path& dir, int frames = 5) {
+  SyntheticOptions s = test::small_tube(frames);
   s.drift = 0.8;
-  JobConfig c = test::tube_job(dir, s);
+  SequenceJobOptions c = test::tube_job(dir, s);
   c.output.colored.enabled = true;
   c.output.colored.max = 0.05;
   c.output.checker.enabled = true;
@@ -56,7 +56,7 @@ size_t column(const std::vector<std::vector<std::string>>& rows, const std::stri
 
 TEST_CASE("colored PLY files carry the per-triangle CSV's shear as colours, before and after") {
   test::TempDir dir("extras_colored");
-  const JobConfig c = visual_job(dir.path());
+  const SequenceJobOptions c = visual_job(dir.path());
   const SequencePlan plan = plan_sequence_job(c);
   const std::string described = describe_plan(plan);
   CHECK(described.find("colored/{before,after}/<name>.ply (5 frames: shear 0 blue to 0.05") !=
@@ -99,7 +99,7 @@ TEST_CASE("colored PLY files carry the per-triangle CSV's shear as colours, befo
 
 TEST_CASE("checker frames share the template's texture coordinates; texture and material") {
   test::TempDir dir("extras_checker");
-  const JobConfig c = visual_job(dir.path());
+  const SequenceJobOptions c = visual_job(dir.path());
   const SequenceResult r = run_sequence_job(plan_sequence_job(c));
   const ObjFile templ = read_obj(dir / "in/frame_0000.obj");
   const CornerUv own = *input_uv(templ, templ.mesh.F);
@@ -132,7 +132,7 @@ TEST_CASE("checker frames share the template's texture coordinates; texture and 
 TEST_CASE(
     "iterations.csv: the engine's figures per iteration, shear after each for chosen frames") {
   test::TempDir dir("extras_iterations");
-  JobConfig c = visual_job(dir.path());
+  SequenceJobOptions c = visual_job(dir.path());
   c.massage.tolerance = 0.0;  // run every iteration
   const SequenceResult r = run_sequence_job(plan_sequence_job(c));
   const auto rows = read_csv(dir / "out/iterations.csv");
@@ -169,7 +169,7 @@ TEST_CASE(
 
 TEST_CASE("visual outputs of chosen frames only; listed frames not processed are warned about") {
   test::TempDir dir("extras_frames");
-  JobConfig c = visual_job(dir.path(), 6);
+  SequenceJobOptions c = visual_job(dir.path(), 6);
   c.output.colored.frames = FrameSelection{FrameSelection::Kind::List, {1, 4, 9}, 0, {}, 1};
   c.output.checker.frames = FrameSelection{FrameSelection::Kind::Range, {}, 0, std::nullopt, 2};
   c.output.iterations.frames = FrameSelection::none();
@@ -192,7 +192,7 @@ TEST_CASE("visual outputs of chosen frames only; listed frames not processed are
 
 TEST_CASE("visual outputs are the same bytes with 1 or 2 threads") {
   test::TempDir dir("extras_threads");
-  JobConfig c = visual_job(dir.path(), 6);
+  SequenceJobOptions c = visual_job(dir.path(), 6);
   c.output.iterations.shear_frames = FrameSelection{};  // all
   c.output.checker.uv = CheckerUvSource::Charts;
   c.output.colored.colors = ShearColorMode::Vertices;
@@ -210,8 +210,8 @@ TEST_CASE("visual outputs are the same bytes with 1 or 2 threads") {
 TEST_CASE("checker charts on a rest mesh without texture coordinates; glTF input") {
   test::TempDir dir("extras_rest");
   SECTION("a rest mesh (OFF, no texture coordinates) as the template: charts") {
-    JobConfig c = visual_job(dir.path(), 3);
-    SyntheticConfig s;
+    SequenceJobOptions c = visual_job(dir.path(), 3);
+    SyntheticOptions s;
     s.segments = 12;
     s.rings = 10;
     const SyntheticSequence seq = make_synthetic_sequence(s);
@@ -228,7 +228,7 @@ TEST_CASE("checker charts on a rest mesh without texture coordinates; glTF input
   }
   SECTION("glTF input: welded vertices coloured, TEXCOORD_0 for the checker") {
     test::skinned_strip().save(dir / "strip.glb", true);
-    JobConfig c;
+    SequenceJobOptions c;
     c.input.gltf = GltfInputOptions{dir / "strip.glb", "", "", 4.0};
     c.output.dir = dir / "out";
     c.output.timings = false;
@@ -255,7 +255,7 @@ TEST_CASE("checker charts on a rest mesh without texture coordinates; glTF input
 }
 
 TEST_CASE("shear per iteration is measured on the iterates of the frame's one run") {
-  SyntheticConfig s;
+  SyntheticOptions s;
   s.frames = 4;
   s.segments = 10;
   s.rings = 8;

@@ -107,12 +107,12 @@ TEST_CASE("records are read back, their outputs checked by size and SHA-256") {
 }
 
 TEST_CASE("the config hash ignores what does not change a frame's output") {
-  JobConfig c;
+  SequenceJobOptions c;
   c.input.frames = "/in";
   c.output.dir = "/out";
   const std::string base = frame_config_hash(c);
   CHECK(base.size() == 64);
-  JobConfig d = c;
+  SequenceJobOptions d = c;
   d.threads = 7;
   d.frames_in_flight = 3;
   d.input.range = {2, 9, 3};

@@ -26,9 +26,9 @@ using json = nlohmann::json;
 namespace {
 
 // A job on `gltf` writing to `out`, without timings (so runs compare byte for byte).
-JobConfig gltf_job(const fs::path& gltf, const fs::path& out, OutputFormat format,
-                   std::optional<double> fps = std::nullopt) {
-  JobConfig c;
+SequenceJobOptions gltf_job(const fs::path& gltf, const fs::path& out, OutputFormat format,
+                            std::optional<double> fps = std::nullopt) {
+  SequenceJobOptions c;
   c.input.gltf = GltfInputOptions{gltf, "", "", fps};
   c.output.dir = out;
   c.output.format = format;
@@ -82,7 +82,7 @@ TEST_CASE("a skinned glTF runs to sequence.glb and to OBJ frames with the same r
   const GltfSequence source = load_gltf_sequence({dir / "strip.glb", "", "", 20.0});
   REQUIRE(source.num_frames() == 21);
 
-  const JobConfig c = gltf_job(dir / "strip.glb", dir / "glb", OutputFormat::Gltf, 20.0);
+  const SequenceJobOptions c = gltf_job(dir / "strip.glb", dir / "glb", OutputFormat::Gltf, 20.0);
   const SequencePlan plan = plan_sequence_job(c);
   CHECK_FALSE(fs::exists(dir / "glb"));  // planning writes nothing
   const std::string description = describe_plan(plan);
@@ -110,7 +110,7 @@ TEST_CASE("a skinned glTF runs to sequence.glb and to OBJ frames with the same r
   CHECK(report["config"]["input"]["gltf"] == (dir / "strip.glb").string());
 
   // The same job with OBJ output: the same summary, and frames the GLB plays back.
-  JobConfig obj = c;
+  SequenceJobOptions obj = c;
   obj.output.dir = dir / "obj";
   obj.output.format = OutputFormat::Obj;
   run_sequence_job(plan_sequence_job(obj));
@@ -158,7 +158,7 @@ TEST_CASE("glTF jobs write the same bytes with 1 and 2 threads") {
   test::TempDir dir("gltf_threads");
   test::skinned_strip(true).save(dir / "strip.gltf", false);  // .gltf + .bin, two weight sets
   for (const OutputFormat format : {OutputFormat::Gltf, OutputFormat::Obj}) {
-    JobConfig c = gltf_job(dir / "strip.gltf", dir / "one", format, 15.0);
+    SequenceJobOptions c = gltf_job(dir / "strip.gltf", dir / "one", format, 15.0);
     c.threads = 1;
     run_sequence_job(plan_sequence_job(c));
     c.threads = 2;
@@ -182,7 +182,7 @@ TEST_CASE("glTF jobs write the same bytes with 1 and 2 threads") {
 TEST_CASE("morph-target and node-animated glTF: OBJ frames, frame selection into the GLB") {
   test::TempDir dir("gltf_kinds");
   test::morph_quad().save(dir / "quad.glb", true);
-  JobConfig c = gltf_job(dir / "quad.glb", dir / "quad", OutputFormat::Obj);
+  SequenceJobOptions c = gltf_job(dir / "quad.glb", dir / "quad", OutputFormat::Obj);
   SequenceResult r = run_sequence_job(plan_sequence_job(c));
   REQUIRE(r.frames.size() == 3);  // the keyframe times 0, 1, 2
   CHECK(r.frames[2].time == 2.0);
@@ -263,7 +263,7 @@ TEST_CASE("bad glTF inputs are refused before anything is written, naming file a
                                                 Contains("meshes[0].primitives[0]") &&
                                                 Contains("not a triangle primitive"));
 
-  JobConfig c = gltf_job(dir / "strip.glb", out, OutputFormat::Gltf);
+  SequenceJobOptions c = gltf_job(dir / "strip.glb", out, OutputFormat::Gltf);
   c.input.gltf->animation = "walk";
   CHECK_THAT(error_of([&] { plan_sequence_job(c); }),
              Contains("strip.glb") && Contains("animations") && Contains("'walk'"));
@@ -297,7 +297,8 @@ TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]")
   test::TempDir dir("gltf_real_job");
   for (const test::SharedGltfModel& model : test::kSharedGltfModels) {
     INFO(model.file);
-    JobConfig c = gltf_job(test::shared_gltf_dir() / model.file, dir / "out", OutputFormat::Gltf);
+    SequenceJobOptions c =
+        gltf_job(test::shared_gltf_dir() / model.file, dir / "out", OutputFormat::Gltf);
     c.massage.iterations = 4;
     c.output.per_triangle_csv = false;
     const int frames = load_gltf_sequence(*c.input.gltf).num_frames();
@@ -329,7 +330,7 @@ TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]")
 TEST_CASE("real glTF models with several primitives give one OBJ group per primitive", "[data]") {
   if (!test::have_shared_gltf()) return;
   test::TempDir dir("gltf_real_obj");
-  JobConfig c =
+  SequenceJobOptions c =
       gltf_job(test::shared_gltf_dir() / "morph/MorphStressTest/glTF-Binary/MorphStressTest.glb",
                dir / "out", OutputFormat::Obj);
   c.massage.iterations = 2;

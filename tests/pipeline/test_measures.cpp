@@ -95,6 +95,21 @@ TEST_CASE("a sphere scaled by 1.1 against the sphere: closed-form distances and 
   CHECK(m.features.edges == 0);
 }
 
+TEST_CASE("measures.adaptive: the same peak distance from a fraction of the samples") {
+  const TriMesh sphere = make_icosphere(3, 1.0);
+  TriMesh bumped = sphere;
+  bumped.V.row(7) *= 1.2;  // one vertex 0.2 off the sphere: the peak is there
+  MeasureOptions adaptive;
+  adaptive.adaptive = true;
+  const MeshMeasures uniform = measure_mesh(bumped, MeasureReference(sphere, MeasureOptions{}));
+  const MeshMeasures refined = measure_mesh(bumped, MeasureReference(sphere, adaptive));
+  CHECK(uniform.to_reference.max == Approx(0.2).epsilon(1e-9));
+  CHECK(refined.to_reference.max == uniform.to_reference.max);
+  CHECK(refined.to_reference.samples * 2 < uniform.to_reference.samples);
+  CHECK(refined.from_reference.samples * 2 < uniform.from_reference.samples);
+  CHECK(refined.to_reference.refined > 0);
+}
+
 TEST_CASE("a corner moved off a box's edge: features distance and dihedral change see it") {
   const test::Box b;
   const TriMesh box = make_box(4, b.sx, b.sy, b.sz);

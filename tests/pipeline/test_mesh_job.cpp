@@ -23,8 +23,8 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-MeshJobConfig job_config(JobKind job, const fs::path& dir, const std::string& mesh_file) {
-  MeshJobConfig c;
+MeshJobOptions job_config(JobKind job, const fs::path& dir, const std::string& mesh_file) {
+  MeshJobOptions c;
   c.job = job;
   c.massage = default_massage_options(job);
   c.input.mesh = dir / mesh_file;
@@ -38,7 +38,7 @@ MeshJobConfig job_config(JobKind job, const fs::path& dir, const std::string& me
 MeshJobResult remesh(const test::RemeshPair& pair, const fs::path& dir, SampleKind samples) {
   write_mesh(dir / "remesh.off", pair.remesh);
   write_mesh(dir / "source.off", pair.source);
-  MeshJobConfig c = job_config(JobKind::Remesh, dir, "remesh.off");
+  MeshJobOptions c = job_config(JobKind::Remesh, dir, "remesh.off");
   c.input.reference = dir / "source.off";
   c.massage.samples = samples;
   return run_mesh_job(plan_mesh_job(c));
@@ -75,7 +75,7 @@ TEST_CASE("smooth: a box's irregular triangles even out, its faces and sharp edg
   const TriMesh mesh = test::jittered_box(box, 8, 0.3, 7);
   test::TempDir dir("smooth_box");
   write_mesh(dir / "box.obj", mesh);
-  const MeshJobConfig c = job_config(JobKind::Smooth, dir.path(), "box.obj");
+  const MeshJobOptions c = job_config(JobKind::Smooth, dir.path(), "box.obj");
   const MeshJobResult r = run_mesh_job(plan_mesh_job(c));
   REQUIRE(r.ok());
   REQUIRE(r.after);
@@ -106,11 +106,11 @@ TEST_CASE("pinned vertices do not move: a list, and the boundary of an open mesh
   write_mesh(dir / "grid.obj", grid);
   for (JobKind job : {JobKind::Smooth, JobKind::Crossparam, JobKind::Remesh}) {
     INFO(job_name(job));
-    MeshJobConfig c = job_config(job, dir.path(), "grid.obj");
+    MeshJobOptions c = job_config(job, dir.path(), "grid.obj");
     if (job == JobKind::Crossparam) {
       TriMesh templ = make_grid(12, 10, 1.2, 1.0);
       write_mesh(dir / "template.obj", templ);
-      c.template_mesh = dir / "template.obj";
+      c.templ.mesh = dir / "template.obj";
     }
     if (job == JobKind::Remesh) {
       write_mesh(dir / "source.off", make_grid(30, 25, 1.2, 1.0));
@@ -145,8 +145,8 @@ TEST_CASE("crossparam: the target takes the template's triangle shapes on its ow
   test::TempDir dir("crossparam");
   write_mesh(dir / "target.obj", pair.target);
   write_mesh(dir / "template.obj", pair.templ);
-  MeshJobConfig c = job_config(JobKind::Crossparam, dir.path(), "target.obj");
-  c.template_mesh = dir / "template.obj";
+  MeshJobOptions c = job_config(JobKind::Crossparam, dir.path(), "target.obj");
+  c.templ.mesh = dir / "template.obj";
   c.output.per_triangle_csv = true;
   const MeshJobResult r = run_mesh_job(plan_mesh_job(c));
   REQUIRE(r.ok());
@@ -184,7 +184,7 @@ TEST_CASE("outputs: the input's name and format, measures.csv and report.json") 
     obj += "\n";
   }
   write_file_atomic(dir / "box.obj", obj);
-  MeshJobConfig c = job_config(JobKind::Smooth, dir.path(), "box.obj");
+  MeshJobOptions c = job_config(JobKind::Smooth, dir.path(), "box.obj");
   c.massage.iterations = 5;
   const MeshJobPlan plan = plan_mesh_job(c);
   CHECK(plan.output_mesh == dir / "out/box.obj");
@@ -223,7 +223,7 @@ TEST_CASE("outputs: the input's name and format, measures.csv and report.json") 
   // Other formats on request: OFF and PLY from an OBJ, OBJ from an OFF.
   for (auto [format, name] :
        {std::pair{MeshOutputFormat::Off, "box.off"}, std::pair{MeshOutputFormat::Ply, "box.ply"}}) {
-    MeshJobConfig other = c;
+    MeshJobOptions other = c;
     other.output.format = format;
     other.output.dir = dir / "out_other";
     const MeshJobResult o = run_mesh_job(plan_mesh_job(other));
@@ -232,7 +232,7 @@ TEST_CASE("outputs: the input's name and format, measures.csv and report.json") 
     CHECK((back_other.V - o.V).cwiseAbs().maxCoeff() == 0.0);
   }
   write_mesh(dir / "plain.off", mesh);
-  MeshJobConfig from_off = job_config(JobKind::Smooth, dir.path(), "plain.off");
+  MeshJobOptions from_off = job_config(JobKind::Smooth, dir.path(), "plain.off");
   from_off.output.format = MeshOutputFormat::Obj;
   from_off.massage.iterations = 3;
   CHECK(plan_mesh_job(from_off).output_mesh == dir / "out/plain.obj");
@@ -247,7 +247,7 @@ TEST_CASE("the same job gives the same bytes with 1 or 2 threads") {
   write_mesh(dir / "source.off", pair.source);
   std::string bytes[2][3];
   for (int threads : {1, 2}) {
-    MeshJobConfig c = job_config(JobKind::Remesh, dir.path(), "remesh.off");
+    MeshJobOptions c = job_config(JobKind::Remesh, dir.path(), "remesh.off");
     c.input.reference = dir / "source.off";
     c.threads = threads;
     c.output.dir = dir / ("out" + std::to_string(threads));
@@ -272,19 +272,19 @@ TEST_CASE("bad inputs are refused before anything is written, naming the file") 
   const TriMesh sphere = make_icosphere(2, 1.0);
   write_mesh(dir / "target.obj", sphere);
   write_mesh(dir / "other.obj", make_icosphere(1, 1.0));
-  MeshJobConfig c = job_config(JobKind::Crossparam, dir.path(), "target.obj");
-  c.template_mesh = dir / "other.obj";
+  MeshJobOptions c = job_config(JobKind::Crossparam, dir.path(), "target.obj");
+  c.templ.mesh = dir / "other.obj";
   CHECK(error_of([&] { plan_mesh_job(c); }) ==
         "template (other.obj): 42 vertices, but the mesh (target.obj) has 162 (crossparam needs "
         "the same connectivity)");
   TriMesh flipped = sphere;
   flipped.F.row(5) = Eigen::RowVector3i(sphere.F(5, 1), sphere.F(5, 0), sphere.F(5, 2));
   write_mesh(dir / "flipped.obj", flipped);
-  c.template_mesh = dir / "flipped.obj";
+  c.templ.mesh = dir / "flipped.obj";
   CHECK_THAT(error_of([&] { plan_mesh_job(c); }),
              Contains("template (flipped.obj): triangle 6 has vertices"));
 
-  MeshJobConfig s = job_config(JobKind::Smooth, dir.path(), "target.obj");
+  MeshJobOptions s = job_config(JobKind::Smooth, dir.path(), "target.obj");
   s.massage.pinned = {500};
   CHECK(error_of([&] { plan_mesh_job(s); }) ==
         "massage.pinned: vertex 500 is out of range (the mesh has 162 vertices)");
@@ -292,16 +292,16 @@ TEST_CASE("bad inputs are refused before anything is written, naming the file") 
   s.output.dir = dir.path();  // out/target.obj would be the input itself
   CHECK_THAT(error_of([&] { plan_mesh_job(s); }), Contains("would overwrite an input file"));
 
-  MeshJobConfig missing = job_config(JobKind::Smooth, dir.path(), "nothing.obj");
+  MeshJobOptions missing = job_config(JobKind::Smooth, dir.path(), "nothing.obj");
   CHECK_THROWS_AS(plan_mesh_job(missing), IoError);
   write_file_atomic(dir / "broken.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
-  MeshJobConfig broken = job_config(JobKind::Smooth, dir.path(), "broken.off");
+  MeshJobOptions broken = job_config(JobKind::Smooth, dir.path(), "broken.off");
   CHECK_THAT(error_of([&] { plan_mesh_job(broken); }), Contains("broken.off"));
-  MeshJobConfig stl = job_config(JobKind::Smooth, dir.path(), "mesh.stl");
+  MeshJobOptions stl = job_config(JobKind::Smooth, dir.path(), "mesh.stl");
   write_file_atomic(dir / "mesh.stl", "solid x\n");
   CHECK_THAT(error_of([&] { plan_mesh_job(stl); }), Contains("unknown mesh file extension"));
 
-  MeshJobConfig far = job_config(JobKind::Remesh, dir.path(), "target.obj");
+  MeshJobOptions far = job_config(JobKind::Remesh, dir.path(), "target.obj");
   TriMesh moved = sphere;
   moved.V.col(0).array() += 5.0;
   write_mesh(dir / "moved.obj", moved);

@@ -49,7 +49,7 @@ class NanSource : public FrameSource {
 };
 
 // Frames 2, 3 and 4 of a 6-frame tube made to fail, each in its own way.
-SequencePlan failing_plan(const JobConfig& c) {
+SequencePlan failing_plan(const SequenceJobOptions& c) {
   // Frame 2: a tracking glitch, one vertex flung 5 units (10 radii) off the tube: the optimizer
   // pulls it back into the template's shape and folds triangles over.
   test::edit_obj_vertices(c.input.frames / "frame_0002.obj",
@@ -74,7 +74,7 @@ SequencePlan failing_plan(const JobConfig& c) {
 
 TEST_CASE("each failure kind fails its frame, which is written unchanged by default") {
   test::TempDir dir("safety_copy");
-  const JobConfig c = test::tube_job(dir.path(), test::small_tube());
+  const SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube());
   const SequencePlan plan = failing_plan(c);
   const SequenceResult r = run_sequence_job(plan);
   REQUIRE(r.frames.size() == 6);
@@ -118,7 +118,7 @@ TEST_CASE("each failure kind fails its frame, which is written unchanged by defa
 
 TEST_CASE("with on_failure \"skip\", a failed frame is not written, and stale outputs go") {
   test::TempDir dir("safety_skip");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube());
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube());
   // A first run writes every frame (nothing fails before the inputs are spoiled).
   run_sequence_job(plan_sequence_job(c));
   REQUIRE(fs::exists(dir / "out/frames/frame_0002.obj"));
@@ -142,7 +142,7 @@ TEST_CASE("with on_failure \"skip\", a failed frame is not written, and stale ou
 
 TEST_CASE("folds below the limit are counted, reported, and do not fail the frame") {
   test::TempDir dir("safety_count");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(4));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(4));
   test::edit_obj_vertices(c.input.frames / "frame_0002.obj",
                           [](int v, double& x, double&, double&) {
                             if (v == 40) x += 5.0;

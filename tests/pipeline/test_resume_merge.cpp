@@ -19,7 +19,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-SequenceResult run(const JobConfig& c, const RunHooks& hooks = {}) {
+SequenceResult run(const SequenceJobOptions& c, const RunHooks& hooks = {}) {
   return run_sequence_job(plan_sequence_job(c), hooks);
 }
 
@@ -33,7 +33,7 @@ std::string merge_error(const fs::path& dir) {
 }
 
 // Runs `c` as `n` shards one after the other, then merges them.
-MergeResult run_shards(JobConfig c, int n) {
+MergeResult run_shards(SequenceJobOptions c, int n) {
   for (int i = 0; i < n; ++i) {
     c.shard = {i, n};
     const SequenceResult r = run(c);
@@ -60,7 +60,7 @@ TEST_CASE("shards are contiguous blocks of the selection, named apart") {
 
 TEST_CASE("a resumed run skips current frames and redoes the others, with the same bytes") {
   test::TempDir dir("resume_lib");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube());
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube());
   run(c);
   const auto first = test::folder_bytes(dir / "out");
   CHECK(first.count("records/frame_0003.json"));
@@ -100,7 +100,7 @@ TEST_CASE("a resumed run skips current frames and redoes the others, with the sa
 
 TEST_CASE("an interrupted run, resumed, ends with the bytes of an uninterrupted one") {
   test::TempDir dir("resume_interrupted");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(8));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(8));
   run(c);
   fs::rename(dir / "out", dir / "whole");  // the same path for both runs: report.json names it
   std::atomic<bool> cancel{false};
@@ -122,7 +122,7 @@ TEST_CASE("an interrupted run, resumed, ends with the bytes of an uninterrupted 
 
 TEST_CASE("three shards, merged, write exactly what one run writes") {
   test::TempDir dir("shards_lib");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(8));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(8));
   c.input.range = {1, std::nullopt, 1};  // 7 frames: blocks of 2, 2, 3
   run(c);
   fs::rename(dir / "out", dir / "single");
@@ -142,7 +142,7 @@ TEST_CASE("three shards, merged, write exactly what one run writes") {
 
 TEST_CASE("merge names missing shards, missing frames and shards of another job") {
   test::TempDir dir("shards_missing");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(9));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(9));
   run_shards(c, 3);
 
   fs::remove(dir / "out/records/frame_0004.json");
@@ -187,7 +187,7 @@ TEST_CASE("merge names missing shards, missing frames and shards of another job"
 TEST_CASE("a sharded glTF job: merge assembles sequence.glb from the shards' positions") {
   test::TempDir dir("shards_gltf");
   test::skinned_strip().save(dir / "strip.glb", true);
-  JobConfig c;
+  SequenceJobOptions c;
   c.input.gltf = GltfInputOptions{dir / "strip.glb", "", "", 12.0};
   c.output.dir = dir / "out";
   c.output.format = OutputFormat::Gltf;
@@ -210,7 +210,7 @@ TEST_CASE("a sharded glTF job: merge assembles sequence.glb from the shards' pos
 
 TEST_CASE("visual outputs (colored, checker, iterations.csv) resume and merge like the frames") {
   test::TempDir dir("shards_extras");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(7));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(7));
   c.output.colored.enabled = true;
   c.output.checker.enabled = true;
   c.output.iterations.enabled = true;

@@ -21,7 +21,7 @@ namespace {}  // namespace
 
 TEST_CASE("a sequence job writes every documented output") {
   test::TempDir dir("job_outputs");
-  const JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
+  const SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(5));
   const SequencePlan plan = plan_sequence_job(c);
   CHECK(plan.selected == std::vector<int>{0, 1, 2, 3, 4});
   CHECK(plan.template_frame == 0);
@@ -74,7 +74,7 @@ TEST_CASE("a sequence job writes every documented output") {
 
 TEST_CASE("the output bytes do not depend on the number of threads") {
   test::TempDir dir("job_threads");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(6));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(6));
   c.threads = 1;
   c.output.dir = dir / "one";
   run_sequence_job(plan_sequence_job(c));
@@ -89,7 +89,7 @@ TEST_CASE("the output bytes do not depend on the number of threads") {
 
 TEST_CASE("measures sets the sampling of summary.csv's distances, the same with 1 or 2 threads") {
   test::TempDir dir("job_measures");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(4));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(4));
   auto run = [&](const char* out, int threads) {
     c.threads = threads;
     c.output.dir = dir / out;
@@ -126,7 +126,7 @@ TEST_CASE("measures sets the sampling of summary.csv's distances, the same with 
 
 TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
   test::TempDir dir("job_template");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(3));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(3));
   c.templ.optimize = true;
   c.input.range.stop = 1;
   SequenceResult r = run_sequence_job(plan_sequence_job(c));
@@ -135,7 +135,7 @@ TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
 
   const SyntheticSequence seq = make_synthetic_sequence(test::small_tube(3));
   write_obj(dir / "rest.obj", seq.rest);
-  c.templ = TemplateConfig{};
+  c.templ = TemplateOptions{};
   c.templ.mesh = dir / "rest.obj";
   c.input.range = FrameRange{};
   const SequencePlan plan = plan_sequence_job(c);
@@ -148,7 +148,7 @@ TEST_CASE("the template frame can be optimized too, or come from a rest mesh") {
 
 TEST_CASE("frame ranges select the frames, the template is indexed in the full list") {
   test::TempDir dir("job_range");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(6));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(6));
   c.input.range = {1, 6, 2};
   const SequencePlan plan = plan_sequence_job(c);
   CHECK(plan.selected == std::vector<int>{1, 3, 5});
@@ -169,7 +169,7 @@ TEST_CASE("frame ranges select the frames, the template is indexed in the full l
 
 TEST_CASE("mismatched frames are refused before anything is written") {
   test::TempDir dir("job_mismatch");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(5));
   const SyntheticSequence other = make_synthetic_sequence(test::small_tube(5, 10));
   write_file_atomic(dir / "in/frame_0003.obj",
                     format_synthetic_obj(other, synthetic_frame(other, 3).drifted, "other"));
@@ -195,7 +195,7 @@ TEST_CASE("mismatched frames are refused before anything is written") {
 
 TEST_CASE("an output folder that would overwrite an input is refused") {
   test::TempDir dir("job_overwrite");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(5));
   fs::rename(dir / "in", dir / "frames");
   c.input.frames = dir / "frames";
   c.output.dir = dir.path();
@@ -208,7 +208,7 @@ TEST_CASE("an output folder that would overwrite an input is refused") {
 
 TEST_CASE("a cancelled run stops before the next frame and records it") {
   test::TempDir dir("job_cancel");
-  const JobConfig c = test::tube_job(dir.path(), test::small_tube(5));
+  const SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(5));
   std::atomic<bool> cancel{true};
   RunHooks hooks;
   hooks.cancel = &cancel;
@@ -221,7 +221,7 @@ TEST_CASE("a cancelled run stops before the next frame and records it") {
 
 TEST_CASE("a synthetic input is generated with its ground truth") {
   test::TempDir dir("job_synthetic");
-  JobConfig c;
+  SequenceJobOptions c;
   c.input.synthetic = test::small_tube(4);
   c.output.dir = dir / "out";
   c.threads = 2;

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 TEST_CASE("a write that fails mid-run throws its IoError after the pipeline drained",
           "[pipeline][errors]") {
   test::TempDir dir("job_write_fails");
-  JobConfig c = test::tube_job(dir.path(), test::small_tube(6));
+  SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(6));
   c.massage.iterations = 3;
   c.frames_in_flight = 4;
   const SequencePlan plan = plan_sequence_job(c);

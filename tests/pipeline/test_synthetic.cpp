@@ -12,8 +12,8 @@ using namespace sm;
 
 namespace {
 
-SyntheticConfig small_config() {
-  SyntheticConfig c;
+SyntheticOptions small_config() {
+  SyntheticOptions c;
   c.frames = 5;
   c.segments = 12;
   c.rings = 10;
@@ -41,7 +41,7 @@ TEST_CASE("the synthetic sequence is deterministic") {
     CHECK(synthetic_frame(a, t).drifted == synthetic_frame(b, t).drifted);
     CHECK(synthetic_frame(a, t).clean == synthetic_frame(b, t).clean);
   }
-  SyntheticConfig other = small_config();
+  SyntheticOptions other = small_config();
   other.seed = 2;
   CHECK(synthetic_frame(make_synthetic_sequence(other), 4).drifted !=
         synthetic_frame(a, 4).drifted);
@@ -57,7 +57,7 @@ TEST_CASE("frame 0 is the straight, undrifted tube") {
 }
 
 TEST_CASE("drifted vertices slide on the bent tube's surface, not at its ends") {
-  const SyntheticConfig c = small_config();
+  const SyntheticOptions c = small_config();
   const SyntheticSequence seq = make_synthetic_sequence(c);
   const SyntheticFrame last = synthetic_frame(seq, c.frames - 1);
   const double kappa = c.bend * M_PI / 180.0 / c.length;
@@ -101,7 +101,7 @@ TEST_CASE("synthetic frames are written as OBJ files that read back exactly") {
 }
 
 TEST_CASE("synthetic frame names and invalid configs") {
-  SyntheticConfig c = small_config();
+  SyntheticOptions c = small_config();
   CHECK(synthetic_frame_name(make_synthetic_sequence(c), 7) == "frame_0007.obj");
   c.frames = 12345;
   CHECK(synthetic_frame_name(make_synthetic_sequence(c), 7) == "frame_00007.obj");

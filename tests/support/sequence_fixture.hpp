@@ -11,14 +11,14 @@
 #include <vector>
 
 #include "io/atomic_file.hpp"
-#include "io/config.hpp"
+#include "pipeline/sequence_options.hpp"
 #include "pipeline/synthetic.hpp"
 
 namespace sm::test {
 
 // A drifting tube of `frames` frames, `segments` × 10 vertices.
-inline SyntheticConfig small_tube(int frames = 6, int segments = 12) {
-  SyntheticConfig c;
+inline SyntheticOptions small_tube(int frames = 6, int segments = 12) {
+  SyntheticOptions c;
   c.frames = frames;
   c.segments = segments;
   c.rings = 10;
@@ -27,9 +27,9 @@ inline SyntheticConfig small_tube(int frames = 6, int segments = 12) {
 
 // Frames of `tube` in dir/in, and a config reading them into dir/out (8 iterations, per-triangle
 // tables, no timings: every output byte is reproducible).
-inline JobConfig tube_job(const std::filesystem::path& dir, const SyntheticConfig& tube) {
+inline SequenceJobOptions tube_job(const std::filesystem::path& dir, const SyntheticOptions& tube) {
   write_synthetic_sequence(make_synthetic_sequence(tube), dir / "in", dir / "gt");
-  JobConfig c;
+  SequenceJobOptions c;
   c.input.frames = dir / "in";
   c.output.dir = dir / "out";
   c.output.per_triangle_csv = true;

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/config.hpp"
+#include "config/config.hpp"
 #include "mesh/errors.hpp"
 #include "support/temp_dir.hpp"
 
@@ -16,7 +16,7 @@ namespace {
 
 const fs::path kBase = "/data/project/configs";
 
-MeshJobConfig parse(const std::string& text) {
+MeshJobOptions parse(const std::string& text) {
   return parse_mesh_job_config(parse_json_strict(text), kBase);
 }
 
@@ -46,21 +46,21 @@ std::string with(const std::string& base, const std::string& section, const std:
 }  // namespace
 
 TEST_CASE("the issue's three example configs parse, paths against the config's folder") {
-  const MeshJobConfig r = parse(kRemesh);
+  const MeshJobOptions r = parse(kRemesh);
   CHECK(r.job == JobKind::Remesh);
   CHECK(r.input.mesh == fs::path("/data/project/configs/bunny_remesh.off"));
   CHECK(r.input.reference == fs::path("/data/project/configs/bunny.off"));
-  CHECK(r.template_mesh.empty());
+  CHECK(r.templ.mesh.empty());
   CHECK(r.output.dir == fs::path("/data/project/configs/out"));
   CHECK(r.output.format == MeshOutputFormat::Same);
 
-  const MeshJobConfig c = parse(kCrossparam);
+  const MeshJobOptions c = parse(kCrossparam);
   CHECK(c.job == JobKind::Crossparam);
   CHECK(c.input.mesh == fs::path("/data/project/configs/man.obj"));
   CHECK(c.input.reference.empty());
-  CHECK(c.template_mesh == fs::path("/data/project/configs/horse.obj"));
+  CHECK(c.templ.mesh == fs::path("/data/project/configs/horse.obj"));
 
-  const MeshJobConfig s = parse(kSmooth);
+  const MeshJobOptions s = parse(kSmooth);
   CHECK(s.job == JobKind::Smooth);
   CHECK(s.input.mesh == fs::path("/data/project/configs/fandisk.obj"));
 }
@@ -68,7 +68,7 @@ TEST_CASE("the issue's three example configs parse, paths against the config's f
 TEST_CASE("defaults: MassageOptions' for remesh and crossparam, uniform weights for smooth") {
   const MassageOptions plain;
   for (const std::string& text : {kRemesh, kCrossparam}) {
-    const MeshJobConfig c = parse(text);
+    const MeshJobOptions c = parse(text);
     CHECK(c.massage.weights == WeightKind::MeanValue);
     CHECK(c.massage.iterations == plain.iterations);
     CHECK(c.massage.samples == SampleKind::Vertices);
@@ -76,7 +76,7 @@ TEST_CASE("defaults: MassageOptions' for remesh and crossparam, uniform weights 
     CHECK_FALSE(c.massage.pin_boundary);
     CHECK(c.massage.pinned.empty());
   }
-  const MeshJobConfig s = parse(kSmooth);
+  const MeshJobOptions s = parse(kSmooth);
   CHECK(s.massage.weights == WeightKind::Uniform);
   CHECK(s.massage.iterations == 60);
   CHECK(s.massage.samples == SampleKind::Edges);
@@ -87,7 +87,7 @@ TEST_CASE("defaults: MassageOptions' for remesh and crossparam, uniform weights 
   // Smoothing with mean value weights on request.
   CHECK(parse(with(kSmooth, "massage", R"({"weights": "mean_value"})")).massage.weights ==
         WeightKind::MeanValue);
-  const MeshJobConfig d = parse(kSmooth);
+  const MeshJobOptions d = parse(kSmooth);
   const MeasureOptions m;
   CHECK(d.measures.spacing == m.spacing);
   CHECK(d.measures.feature_angle == 30.0);
@@ -99,7 +99,7 @@ TEST_CASE("defaults: MassageOptions' for remesh and crossparam, uniform weights 
 }
 
 TEST_CASE("every key of the single-mesh jobs is settable") {
-  const MeshJobConfig c = parse(R"({"job": "smooth", "input": {"mesh": "/abs/m.ply"},
+  const MeshJobOptions c = parse(R"({"job": "smooth", "input": {"mesh": "/abs/m.ply"},
     "output": {"dir": "o", "format": "off", "per_triangle_csv": true, "timings": false},
     "massage": {"weights": "mean_value", "iterations": 7, "mu": 0.3, "samples": "faces",
                 "pin_boundary": true, "pinned": [3, 1]},
@@ -123,11 +123,11 @@ TEST_CASE("every key of the single-mesh jobs is settable") {
 }
 
 TEST_CASE("the massage section accepts every key the sequence job's does") {
-  JobConfig sequence;
+  SequenceJobOptions sequence;
   const json keys = to_json(sequence)["massage"];
   json doc = json::parse(kRemesh);
   doc["massage"] = keys;
-  const MeshJobConfig c = parse_mesh_job_config(doc, kBase);
+  const MeshJobOptions c = parse_mesh_job_config(doc, kBase);
   CHECK(to_json(c)["massage"] == keys);
 }
 
@@ -135,7 +135,7 @@ TEST_CASE("the resolved single-mesh config round-trips through to_json") {
   for (const std::string& text :
        {kRemesh, kCrossparam, kSmooth,
         with(kSmooth, "measures", R"({"shear_bins": [0, 1, "inf"], "feature_angle": 20})")}) {
-    const MeshJobConfig c = parse(text);
+    const MeshJobOptions c = parse(text);
     const json resolved = to_json(c);
     CHECK(to_json(parse_mesh_job_config(resolved, "/elsewhere")) == resolved);
   }
@@ -146,22 +146,22 @@ TEST_CASE("the resolved single-mesh config round-trips through to_json") {
 }
 
 TEST_CASE("parse_any_config dispatches on the job kind") {
-  const AnyJobConfig seq = parse_any_config(
+  const AnyJobOptions seq = parse_any_config(
       json::parse(R"({"job": "sequence", "input": {"frames": "f"}, "output": {"dir": "o"}})"),
       kBase);
-  CHECK(std::holds_alternative<JobConfig>(seq));
-  const AnyJobConfig mesh = parse_any_config(json::parse(kSmooth), kBase);
-  REQUIRE(std::holds_alternative<MeshJobConfig>(mesh));
-  CHECK(std::get<MeshJobConfig>(mesh).job == JobKind::Smooth);
+  CHECK(std::holds_alternative<SequenceJobOptions>(seq));
+  const AnyJobOptions mesh = parse_any_config(json::parse(kSmooth), kBase);
+  REQUIRE(std::holds_alternative<MeshJobOptions>(mesh));
+  CHECK(std::get<MeshJobOptions>(mesh).job == JobKind::Smooth);
   CHECK(job_name(JobKind::Crossparam) == "crossparam");
 
   const test::TempDir temp("mesh_job_config");
   const fs::path& dir = temp.path();
   fs::create_directories(dir);
   std::ofstream(dir / "job.json") << kRemesh;
-  const AnyJobConfig loaded = load_any_config(dir / "job.json");
-  REQUIRE(std::holds_alternative<MeshJobConfig>(loaded));
-  CHECK(std::get<MeshJobConfig>(loaded).input.reference == dir / "bunny.off");
+  const AnyJobOptions loaded = load_any_config(dir / "job.json");
+  REQUIRE(std::holds_alternative<MeshJobOptions>(loaded));
+  CHECK(std::get<MeshJobOptions>(loaded).input.reference == dir / "bunny.off");
 }
 
 TEST_CASE("bad single-mesh configs name the key") {

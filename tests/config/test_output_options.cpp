@@ -2,7 +2,7 @@
 // (true, false or an object), frame selections, defaults, round trip and messages by JSON path.
 #include <catch2/catch.hpp>
 
-#include "io/config.hpp"
+#include "config/config.hpp"
 #include "mesh/errors.hpp"
 
 using namespace sm;
@@ -10,7 +10,7 @@ using json = nlohmann::json;
 
 namespace {
 
-JobConfig parse_output(const std::string& output) {
+SequenceJobOptions parse_output(const std::string& output) {
   const std::string text =
       R"({"job": "sequence", "input": {"frames": "take1"}, "output": )" + output + "}";
   return parse_config(parse_json_strict(text), "/data/project/configs");
@@ -28,7 +28,7 @@ std::string error_of(const std::string& output) {
 }  // namespace
 
 TEST_CASE("visual outputs are off by default and take their defaults with true") {
-  const JobConfig off = parse_output(R"({"dir": "o"})");
+  const SequenceJobOptions off = parse_output(R"({"dir": "o"})");
   CHECK_FALSE(off.output.colored.enabled);
   CHECK_FALSE(off.output.checker.enabled);
   CHECK_FALSE(off.output.iterations.enabled);
@@ -37,9 +37,9 @@ TEST_CASE("visual outputs are off by default and take their defaults with true")
   CHECK(resolved_off["checker"] == false);
   CHECK(resolved_off["iterations"] == false);
 
-  const JobConfig on =
+  const SequenceJobOptions on =
       parse_output(R"({"dir": "o", "colored": true, "checker": true, "iterations": true})");
-  const OutputConfig& o = on.output;
+  const OutputOptions& o = on.output;
   CHECK(o.colored.enabled);
   CHECK(o.colored.frames.kind == FrameSelection::Kind::All);
   CHECK(o.colored.max == 0.1);
@@ -60,11 +60,11 @@ TEST_CASE("visual outputs are off by default and take their defaults with true")
 }
 
 TEST_CASE("visual output objects: every key, frame selections, round trip") {
-  const JobConfig c = parse_output(R"({"dir": "o",
+  const SequenceJobOptions c = parse_output(R"({"dir": "o",
       "colored": {"frames": [7, 3, 7, 0], "max": 0.25, "colors": "vertices"},
       "checker": {"frames": "2:10:4", "uv": "charts", "cells": 16, "cell_size": 2.5},
       "iterations": {"frames": "5:", "shear_frames": [9]}})");
-  const OutputConfig& o = c.output;
+  const OutputOptions& o = c.output;
   CHECK(o.colored.enabled);
   CHECK(o.colored.frames.list == std::vector<int>{0, 3, 7});  // sorted, without repeats
   CHECK(o.colored.frames.contains(3));

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/config.hpp"
+#include "config/config.hpp"
 #include "mesh/errors.hpp"
 #include "support/temp_dir.hpp"
 
@@ -15,7 +15,7 @@ namespace {
 
 const fs::path kBase = "/data/project/configs";
 
-JobConfig parse(const std::string& text) {
+SequenceJobOptions parse(const std::string& text) {
   return parse_config(parse_json_strict(text), kBase);
 }
 
@@ -42,7 +42,7 @@ std::string with(const std::string& section, const std::string& value) {
 }  // namespace
 
 TEST_CASE("a minimal config takes every default") {
-  const JobConfig c = parse(kMinimal);
+  const SequenceJobOptions c = parse(kMinimal);
   const MassageOptions defaults;
   CHECK(c.job == JobKind::Sequence);
   CHECK(c.input.frames == fs::path("/data/project/configs/take1"));
@@ -64,7 +64,7 @@ TEST_CASE("a minimal config takes every default") {
 }
 
 TEST_CASE("the issue's example config parses, paths resolve against the config's folder") {
-  const JobConfig c = parse(R"({ "job": "sequence",
+  const SequenceJobOptions c = parse(R"({ "job": "sequence",
     "input":    { "frames": "captures/take1" },
     "template": { "frame": 0 },
     "output":   { "dir": "../out/take1", "format": "obj", "per_triangle_csv": true },
@@ -75,14 +75,14 @@ TEST_CASE("the issue's example config parses, paths resolve against the config's
   CHECK(c.output.per_triangle_csv);
   CHECK(c.massage.weights == WeightKind::MeanValue);
   CHECK(c.massage.samples == SampleKind::Vertices);
-  const JobConfig abs = parse(R"({"job": "sequence", "input": {"frames": "/abs/take"},
+  const SequenceJobOptions abs = parse(R"({"job": "sequence", "input": {"frames": "/abs/take"},
                                   "template": {"mesh": "rest.obj"}, "output": {"dir": "/o"}})");
   CHECK(abs.input.frames == fs::path("/abs/take"));
   CHECK(abs.templ.mesh == fs::path("/data/project/configs/rest.obj"));
 }
 
 TEST_CASE("every MassageOptions key is settable under massage") {
-  const JobConfig c = parse(with("massage", R"({
+  const SequenceJobOptions c = parse(with("massage", R"({
     "weights": "uniform", "boundary_weights": "one_sided", "iterations": 7, "mu": 0.25, "samples": "faces", "tolerance": 0.01,
     "lawson": false, "lawson_floor": 1e-6, "solver": "direct", "solver_tolerance": 1e-8,
     "solver_max_iterations": 50, "closest_points": "exact", "walk_max_steps": 3,
@@ -107,14 +107,14 @@ TEST_CASE("every MassageOptions key is settable under massage") {
 }
 
 TEST_CASE("measures: the sampling of summary.csv's distances, every DistanceOptions key") {
-  const JobConfig defaults = parse(kMinimal);
+  const SequenceJobOptions defaults = parse(kMinimal);
   CHECK(defaults.measures.spacing == 0.125);
   CHECK(defaults.measures.sample_edges);
   CHECK(defaults.measures.sample_faces);
   CHECK(defaults.measures.adaptive);
   CHECK(defaults.measures.refine_above == 0.4);
   CHECK(defaults.measures.corresponding_triangles);  // set by the job, not a key
-  const JobConfig c = parse(with("measures", R"({"spacing": 0.25, "sample_edges": false,
+  const SequenceJobOptions c = parse(with("measures", R"({"spacing": 0.25, "sample_edges": false,
       "sample_faces": false, "adaptive": false, "refine_above": 0.75})"));
   CHECK(c.measures.spacing == 0.25);
   CHECK_FALSE(c.measures.sample_edges);
@@ -148,7 +148,7 @@ TEST_CASE("measures: the sampling of summary.csv's distances, every DistanceOpti
 }
 
 TEST_CASE("the resolved config round-trips through to_json") {
-  const JobConfig c = parse(R"({"job": "sequence",
+  const SequenceJobOptions c = parse(R"({"job": "sequence",
     "input": {"synthetic": {"frames": 5, "bend": 45, "seed": 3}, "range": {"start": 1, "stop": 4, "step": 2}},
     "template": {"frame": 2, "optimize": true},
     "output": {"dir": "o", "per_triangle_csv": true, "timings": false},
@@ -160,7 +160,7 @@ TEST_CASE("the resolved config round-trips through to_json") {
   CHECK(resolved["massage"]["mu"] == 0.5);
   CHECK(resolved["massage"]["iterations"] == 15);
   CHECK(resolved["output"]["dir"] == "/data/project/configs/o");
-  const JobConfig again = parse_config(resolved, "/elsewhere");
+  const SequenceJobOptions again = parse_config(resolved, "/elsewhere");
   CHECK(to_json(again) == resolved);
   CHECK(to_json(parse(kMinimal))["massage"]["mu"] == "auto");
   CHECK(to_json(parse(kMinimal))["input"]["range"]["stop"].is_null());
@@ -216,6 +216,15 @@ TEST_CASE("wrong types and out-of-range values name the key and the value") {
   CHECK(config_error("[1, 2]") == "config: expected an object, got an array");
 }
 
+TEST_CASE("a path with a NUL character is refused, naming the key") {
+  json j = json::parse(kMinimal);
+  j["input"]["frames"] = std::string("take1\0/x", 8);
+  CHECK(config_error(j.dump()) == "input.frames: path contains a NUL character");
+  j = json::parse(kMinimal);
+  j["template"] = {{"mesh", std::string("rest\0.obj", 9)}};
+  CHECK(config_error(j.dump()) == "template.mesh: path contains a NUL character");
+}
+
 TEST_CASE("missing and conflicting keys") {
   CHECK(config_error(R"({"input": {"frames": "f"}, "output": {"dir": "o"}})") ==
         "job: missing (the kind of job: \"sequence\")");
@@ -247,7 +256,7 @@ TEST_CASE("missing and conflicting keys") {
 }
 
 TEST_CASE("glTF input keys: file, mesh and animation by name or index, fps; GLB output") {
-  JobConfig c = parse(R"({"job": "sequence", "input": {"gltf": "takes/walk.glb"},
+  SequenceJobOptions c = parse(R"({"job": "sequence", "input": {"gltf": "takes/walk.glb"},
                           "output": {"dir": "out", "format": "gltf"}})");
   REQUIRE(c.input.gltf);
   CHECK(c.input.gltf->file == fs::path("/data/project/configs/takes/walk.glb"));
@@ -343,7 +352,7 @@ TEST_CASE("load_config reads a file and resolves paths against its folder") {
   const fs::path& dir = temp.path();
   fs::create_directories(dir / "sub");
   std::ofstream(dir / "sub" / "job.json") << kMinimal;
-  const JobConfig c = load_config(dir / "sub" / "job.json");
+  const SequenceJobOptions c = load_config(dir / "sub" / "job.json");
   CHECK(c.input.frames == dir / "sub" / "take1");
   CHECK(c.output.dir == dir / "sub" / "out");
   CHECK_THROWS_AS(load_config(dir / "missing.json"), IoError);
@@ -390,15 +399,15 @@ TEST_CASE("every example config in configs/ parses") {
   for (const auto& entry : fs::directory_iterator(configs)) {
     if (entry.path().extension() != ".json") continue;
     INFO(entry.path().string());
-    const AnyJobConfig any = load_any_config(entry.path());
-    const fs::path& dir = std::holds_alternative<JobConfig>(any)
-                              ? std::get<JobConfig>(any).output.dir
-                              : std::get<MeshJobConfig>(any).output.dir;
+    const AnyJobOptions any = load_any_config(entry.path());
+    const fs::path& dir = std::holds_alternative<SequenceJobOptions>(any)
+                              ? std::get<SequenceJobOptions>(any).output.dir
+                              : std::get<MeshJobOptions>(any).output.dir;
     CHECK(dir.is_absolute());
     ++parsed;
   }
   CHECK(parsed >= 7);  // demo, the crane folder, CesiumMan glTF, the single-mesh jobs
-  const JobConfig man = load_config(configs / "gltf_cesiumman.json");
+  const SequenceJobOptions man = load_config(configs / "gltf_cesiumman.json");
   REQUIRE(man.input.gltf);
   CHECK(man.input.gltf->file ==
         (configs / "../../shared/data/gltf/skinned/CesiumMan/glTF-Binary/CesiumMan.glb")

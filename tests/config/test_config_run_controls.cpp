@@ -2,7 +2,7 @@
 // "shard" and "resume"; --shard's I/N.
 #include <catch2/catch.hpp>
 
-#include "io/config.hpp"
+#include "config/config.hpp"
 #include "mesh/errors.hpp"
 
 using namespace sm;
@@ -13,7 +13,7 @@ namespace {
 const std::string kMinimal =
     R"({"job": "sequence", "input": {"frames": "take1"}, "output": {"dir": "out"}})";
 
-JobConfig parse_with(const std::string& key, const std::string& value) {
+SequenceJobOptions parse_with(const std::string& key, const std::string& value) {
   json j = json::parse(kMinimal);
   if (key.rfind("output.", 0) == 0)
     j["output"][key.substr(7)] = json::parse(value);
@@ -35,7 +35,7 @@ std::string error_with(const std::string& key, const std::string& value) {
 
 TEST_CASE(
     "run controls default to: fail beyond 0.5% folded, copy the input, one shard, no resume") {
-  const JobConfig c = parse_config(json::parse(kMinimal), "/base");
+  const SequenceJobOptions c = parse_config(json::parse(kMinimal), "/base");
   CHECK_FALSE(c.checks.max_folded_triangles);
   REQUIRE(c.checks.max_folded_fraction);
   CHECK(*c.checks.max_folded_fraction == 0.005);
@@ -58,7 +58,7 @@ TEST_CASE("run controls are set by their keys and round-trip through to_json") {
   j["output"]["on_failure"] = "skip";
   j["shard"] = {{"index", 2}, {"count", 5}};
   j["resume"] = true;
-  const JobConfig c = parse_config(j, "/base");
+  const SequenceJobOptions c = parse_config(j, "/base");
   CHECK(c.checks.max_folded_triangles == 3);
   CHECK_FALSE(c.checks.max_folded_fraction);
   CHECK(c.output.on_failure == OnFailure::Skip);
@@ -86,7 +86,7 @@ TEST_CASE("run controls: wrong values name the key") {
 }
 
 TEST_CASE("--shard I/N is 0-based") {
-  const ShardConfig s = parse_shard("2/3", "--shard");
+  const ShardOptions s = parse_shard("2/3", "--shard");
   CHECK(s.index == 2);
   CHECK(s.count == 3);
   CHECK(format_shard(s) == "2/3");

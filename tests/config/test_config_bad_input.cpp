@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/config.hpp"
+#include "config/config.hpp"
 #include "mesh/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"

@@ -1,0 +1,165 @@
+#include "config/config.hpp"
+
+#include <algorithm>
+
+#include "io/atomic_file.hpp"
+
+namespace sm {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+bool has(const json& object, const std::string& key) {
+  return object.is_object() && object.contains(key);
+}
+
+const json& member(const json& object, const std::string& key) {
+  static const json absent;
+  return has(object, key) ? object.at(key) : absent;
+}
+
+// The keys of `S` that `T` does not have (the sequence job's keys a single-mesh job refuses).
+template <class S, class T>
+std::vector<std::string> keys_only_in() {
+  S s;
+  T t;
+  std::vector<std::string> out, other = keys_of(entries_of(t));
+  for (const std::string& key : keys_of(entries_of(s)))
+    if (std::find(other.begin(), other.end(), key) == other.end()) out.push_back(key);
+  return out;
+}
+
+void validate_input(const json& input, const InputOptions& in) {
+  if (in.synthetic) check_synthetic_options(*in.synthetic);
+  GltfInputOptions gltf_keys;
+  if (!has(input, "gltf"))
+    for (const std::string& key : keys_of(entries_of(gltf_keys)))
+      if (has(input, key))
+        fail_at("input." + key,
+                "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
+  const int given =
+      int(has(input, "frames")) + int(has(input, "synthetic")) + int(has(input, "gltf"));
+  if (given == 0)
+    fail_at("input",
+            "missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated sequence) or "
+            "\"gltf\" (a glTF animation)");
+  if (given > 1) fail_at("input", "give only one of \"frames\", \"synthetic\" and \"gltf\"");
+}
+
+// The rules across keys of the sequence job (the tables check each key on its own).
+void validate(const json& doc, const SequenceJobOptions& c) {
+  validate_input(doc.at("input"), c.input);
+  const json& templ = member(doc, "template");
+  if (has(templ, "frame") && has(templ, "mesh"))
+    fail_at("template", "give \"frame\" or \"mesh\", not both");
+  if (has(templ, "mesh") && c.templ.optimize)
+    fail_at(
+        "template.optimize",
+        "only applies to a template \"frame\" (with a rest \"mesh\", every frame is optimized)");
+  if (c.input.synthetic) {
+    if (has(templ, "mesh")) fail_at("template.mesh", "not available with input.synthetic");
+    if (c.templ.frame >= c.input.synthetic->frames)
+      fail_at("template.frame", std::to_string(c.templ.frame) +
+                                    " is out of range (input.synthetic.frames is " +
+                                    std::to_string(c.input.synthetic->frames) + ")");
+  }
+  if (c.output.format == OutputFormat::Gltf && !c.input.gltf)
+    fail_at("output.format",
+            "\"gltf\" needs a glTF input (input.gltf), whose mesh, materials and textures the "
+            "output keeps; use \"obj\" for OBJ frames");
+  if (has(doc.at("output"), "gltf") && c.output.format != OutputFormat::Gltf)
+    fail_at("output.gltf", "only applies to output.format \"gltf\"");
+}
+
+// "input" and "template" of a single-mesh job, whose meaning depends on the job.
+void read_mesh_job_input(const json& doc, MeshJobOptions& c, const fs::path& base) {
+  const std::string job = job_name(c.job);
+  if (!has(doc, "input"))
+    fail_at("input", c.job == JobKind::Remesh
+                         ? "missing (\"mesh\": the remesh, and \"reference\": its source)"
+                         : "missing (\"mesh\": the mesh file to optimize)");
+  const json& input = doc.at("input");
+  const std::vector<std::string> refused = keys_only_in<InputOptions, MeshInputOptions>();
+  std::vector<std::string> known = keys_of(entries_of(c.input));
+  known.insert(known.end(), refused.begin(), refused.end());
+  check_keys(input, "input", known);
+  for (const std::string& key : refused)
+    if (has(input, key))
+      fail_at("input." + key, "only for \"job\": \"sequence\"; the " + job +
+                                  " job reads one mesh file from \"input.mesh\"");
+  read_options(input, c.input, base, "input");
+  if (c.job == JobKind::Remesh && !has(input, "reference"))
+    fail_at("input.reference",
+            "missing (the source surface the remesh approximates (.obj, .off or .ply))");
+  if (c.job != JobKind::Remesh && has(input, "reference"))
+    fail_at("input.reference", "only for \"job\": \"remesh\"; the " + job +
+                                   " job keeps the mesh close to itself as loaded");
+
+  if (c.job != JobKind::Crossparam && has(doc, "template"))
+    fail_at("template", c.job == JobKind::Remesh
+                            ? "not used by the remesh job (the remesh is its own template)"
+                            : "not used by the smooth job (it uses uniform or mean value weights "
+                              "of the mesh itself)");
+  if (c.job != JobKind::Crossparam) return;
+  if (!has(doc, "template"))
+    fail_at("template",
+            "missing (an object with \"mesh\": the source mesh whose triangle shapes are copied)");
+  const std::vector<std::string> sequence_only =
+      keys_only_in<TemplateOptions, MeshTemplateOptions>();
+  known = keys_of(entries_of(c.templ));
+  known.insert(known.end(), sequence_only.begin(), sequence_only.end());
+  check_keys(doc.at("template"), "template", known);
+  for (const std::string& key : sequence_only)
+    if (has(doc.at("template"), key))
+      fail_at("template." + key,
+              "only for \"job\": \"sequence\"; the crossparam template is a \"mesh\" file");
+}
+
+}  // namespace
+
+JobKind parse_job_kind(const json& document) {
+  if (!document.is_object()) fail_at("", "expected an object, got " + describe(document));
+  static const FieldInfo job{"job", choice(kJobKindNames), {}, {}};
+  if (!has(document, "job"))
+    fail_at("job",
+            "missing (the kind of job: \"sequence\", \"remesh\", \"crossparam\", or \"smooth\")");
+  JobKind kind = JobKind::Sequence;
+  read_value(document.at("job"), "job", {&job, options_detail::make_ref(kind)}, {}, {});
+  return kind;
+}
+
+SequenceJobOptions parse_config(const json& document, const fs::path& base_dir) {
+  SequenceJobOptions c;
+  read_options(document, c, fs::absolute(base_dir).lexically_normal());
+  validate(document, c);
+  return c;
+}
+
+MeshJobOptions parse_mesh_job_config(const json& document, const fs::path& base_dir) {
+  const fs::path base = fs::absolute(base_dir).lexically_normal();
+  MeshJobOptions c;
+  c.job = parse_job_kind(document);
+  if (c.job == JobKind::Sequence)
+    fail_at("job", "\"sequence\" is not a single-mesh job (use parse_config)");
+  c.massage = default_massage_options(c.job);
+  check_keys(document, "", keys_of(entries_of(c)));
+  read_mesh_job_input(document, c, base);
+  read_options(document, c, base);
+  return c;
+}
+
+AnyJobOptions parse_any_config(const json& document, const fs::path& base_dir) {
+  if (parse_job_kind(document) == JobKind::Sequence) return parse_config(document, base_dir);
+  return parse_mesh_job_config(document, base_dir);
+}
+
+SequenceJobOptions load_config(const fs::path& path) {
+  return parse_config(parse_json_strict(read_file(path)), fs::absolute(path).parent_path());
+}
+
+AnyJobOptions load_any_config(const fs::path& path) {
+  return parse_any_config(parse_json_strict(read_file(path)), fs::absolute(path).parent_path());
+}
+
+}  // namespace sm
