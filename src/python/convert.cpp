@@ -121,7 +121,7 @@ nlohmann::json to_json(const py::kwargs& kwargs, const std::string& path) {
   return to_json(static_cast<const py::handle&>(kwargs), path);
 }
 
-py::object from_json(const nlohmann::json& value) {
+py::object from_json(const nlohmann::json& value, bool non_finite_strings) {
   switch (value.type()) {
     case nlohmann::json::value_t::null:
       return py::none();
@@ -133,16 +133,21 @@ py::object from_json(const nlohmann::json& value) {
       return py::int_(value.get<uint64_t>());
     case nlohmann::json::value_t::number_float:
       return py::float_(value.get<double>());
-    case nlohmann::json::value_t::string:
-      return py::str(value.get_ref<const std::string&>());
+    case nlohmann::json::value_t::string: {
+      const std::string& text = value.get_ref<const std::string&>();
+      if (non_finite_strings && (text == "inf" || text == "-inf" || text == "nan"))
+        return py::float_(text == "nan" ? NAN : text == "inf" ? INFINITY : -INFINITY);
+      return py::str(text);
+    }
     case nlohmann::json::value_t::array: {
       py::list out;
-      for (const nlohmann::json& item : value) out.append(from_json(item));
+      for (const nlohmann::json& item : value) out.append(from_json(item, non_finite_strings));
       return std::move(out);
     }
     case nlohmann::json::value_t::object: {
       py::dict out;
-      for (const auto& [key, item] : value.items()) out[py::str(key)] = from_json(item);
+      for (const auto& [key, item] : value.items())
+        out[py::str(key)] = from_json(item, non_finite_strings);
       return std::move(out);
     }
     default:

@@ -38,7 +38,9 @@ nlohmann::json to_json(const py::handle& value, const std::string& path);
 /// Keyword arguments as a JSON object.
 nlohmann::json to_json(const py::kwargs& kwargs, const std::string& path);
 
-/// JSON as a Python value (objects as dicts in key order, arrays as lists).
-py::object from_json(const nlohmann::json& value);
+/// JSON as a Python value (objects as dicts in key order, arrays as lists). With
+/// `non_finite_strings`, the strings "inf", "-inf" and "nan" (report_json.hpp's json_number) are
+/// floats again.
+py::object from_json(const nlohmann::json& value, bool non_finite_strings = false);
 
 }  // namespace sm::python

@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include <pybind11/functional.h>
+#include <pybind11/stl.h>  // std::optional (Result.failure)
 
 #include "io/options_json.hpp"
 #include "massage/massage.hpp"
@@ -85,8 +85,7 @@ class PyMassager {
   }
 
   Result run(const DoubleArray& vertices, const py::object& reference,
-             const std::optional<std::function<void(py::dict, py::array_t<double>)>>& observe)
-      const {
+             const py::object& on_iteration) const {
     const Massager& engine = *engine_;
     const SampleKind samples = engine.options().samples;
     std::optional<TriMesh> other;  // a reference mesh of its own (remesh use)
@@ -110,10 +109,10 @@ class PyMassager {
                        std::to_string(engine.num_vertices()) + " vertices");
 
     IterationObserver observer;
-    if (observe)
-      observer = [&observe](const IterationStats& stats, const Positions& V) {
+    if (!on_iteration.is_none())
+      observer = [&on_iteration](const IterationStats& stats, const Positions& V) {
         py::gil_scoped_acquire locked;
-        (*observe)(iteration_dict(stats), to_numpy(V));
+        on_iteration(iteration_dict(stats), to_numpy(V));
       };
     MassageResult result;
     {
@@ -140,7 +139,15 @@ class PyMassager {
 
   int num_vertices() const { return engine_->num_vertices(); }
   int num_triangles() const { return static_cast<int>(engine_->triangles().rows()); }
-  py::object options() const { return from_json(write_options(engine_->options())); }
+  // Every key in table order, as the config writes it.
+  py::dict options() const {
+    MassageOptions copy = engine_->options();
+    py::dict out;
+    for (const Entry& e : entries_of(copy))
+      if (const std::optional<nlohmann::json> value = write_value(e))
+        out[py::str(std::string(e.info->key))] = from_json(*value);
+    return out;
+  }
 
  private:
   std::shared_ptr<const Massager> engine_;

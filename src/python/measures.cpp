@@ -52,7 +52,7 @@ void bind_measures(py::module_& m) {
           const MeasureReference reference(std::move(b), options, "mesh b");
           out = measures_json(measure_mesh(a, reference, same ? &shear_template : nullptr));
         }
-        return from_json(out);
+        return from_json(out, true);
       },
       py::arg("a_vertices"), py::arg("a_triangles"), py::arg("b_vertices"),
       py::arg("b_triangles"),
