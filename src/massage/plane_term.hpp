@@ -1,0 +1,34 @@
+#pragma once
+/// The point-to-plane distance term ("distance_term": "plane"): vertex i's term of eq. 4 becomes
+///   α_i [ (n_iᵀ(v_i − v̂_i))² + ε_i ‖(I − n_i n_iᵀ)(v_i − v̂_i)‖² ]
+/// with n_i N's normal at v̂_i (vertex normals interpolated there), so M may slide along N where
+/// ε_i is small, as in point-to-plane ICP. Its normal equations are the isotropic term of B (kept
+/// in K) minus D_i = (1−μ)α_i(1−ε_i)(I − n_i n_iᵀ) on the vertex's 3×3 diagonal block, with
+/// right-hand side (1−μ)α_i v̂_i − D_i v̂_i (coupled_solver.hpp). At a fixed point v̂_i is the
+/// closest point of v_i, v_i − v̂_i is normal and the term's gradient equals eq. 4's: the energy's
+/// stationary points are the paper's, the iteration reaches them faster along the surface.
+#include <vector>
+
+#include "geometry/bvh.hpp"
+#include "massage/coupled_solver.hpp"
+#include "mesh/topology.hpp"
+
+namespace sm {
+
+/// ε_i per vertex (n): `stiffness` everywhere, raised where the surface stretches between the
+/// template T and the start S: ε_i = min(1, stiffness + adapt · s_i), s_i the magnitude of the
+/// log area ratio log(area_S / area_T) of the triangles around i, smoothed over a few rings first
+/// (so that the oscillating area change of a tangential drift averages out and a real stretch
+/// stays). Boundary vertices take 1 (point-to-point: a boundary has no tangent plane to slide in
+/// across it).
+Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, const Triangles& F,
+                                     const Topology& topology, double stiffness, double adapt);
+
+/// D (see above) for the current correspondences; pinned and isolated vertices get none.
+/// `normals`: N's vertex normals (N's vertex count × 3).
+void plane_blocks(const std::vector<SurfacePoint>& v_hat, const Triangles& N_F,
+                  const Positions& normals, const Eigen::VectorXd& alpha,
+                  const Eigen::VectorXd& epsilon, double mu,
+                  const std::vector<unsigned char>& pinned, VertexBlocks& D);
+
+}  // namespace sm
