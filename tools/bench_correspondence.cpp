@@ -56,10 +56,11 @@ std::vector<Setting> settings() {
           {"paper (zero, one_sided)", paper},
           {"plane eps 0.05", plane(0.05, 0.0)},
           {"plane eps 0.2", plane(0.2, 0.0)},
+          {"plane eps 0.4", plane(0.4, 0.0)},
           {"plane eps 0.6", plane(0.6, 0.0)},
           {"plane eps 0.05 adapt 10", plane(0.05, 10.0)},
-          {"plane eps 0.05 adapt 30", plane(0.05, 30.0)},
-          {"plane eps 0.1 adapt 30", plane(0.1, 30.0)}};
+          {"plane eps 0.2 adapt 5", plane(0.2, 5.0)},
+          {"plane eps 0.2 adapt 10", plane(0.2, 10.0)}};
 }
 
 struct Generated {

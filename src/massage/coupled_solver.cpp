@@ -27,17 +27,30 @@ std::array<double, 3> column_norms(const Positions& a) {
 
 void multiply_coupled(const SparseMatrixR& K, const VertexBlocks& D, const Positions& X,
                       Positions& Y) {
-  multiply(K, X, Y);
-  if (D.empty()) return;
+  if (D.empty()) {
+    multiply(K, X, Y);
+    return;
+  }
+  const int n = static_cast<int>(K.rows());
+  Y.resize(n, 3);
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  const double* values = K.valuePtr();
   const double* x = X.data();
   double* y = Y.data();
-  for (size_t i = 0; i < D.size(); ++i) {
-    const std::array<double, 6>& d = D[i];
-    const double* xi = x + 3 * i;
-    double* yi = y + 3 * i;
-    yi[0] -= d[0] * xi[0] + d[3] * xi[1] + d[4] * xi[2];
-    yi[1] -= d[3] * xi[0] + d[1] * xi[1] + d[5] * xi[2];
-    yi[2] -= d[4] * xi[0] + d[5] * xi[1] + d[2] * xi[2];
+  for (int i = 0; i < n; ++i) {
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (int p = outer[i]; p < outer[i + 1]; ++p) {
+      const double* xj = x + 3 * inner[p];
+      const double k = values[p];
+      const std::array<double, 6>& d = D[p];
+      y0 += (k - d[0]) * xj[0] - d[3] * xj[1] - d[4] * xj[2];
+      y1 += -d[3] * xj[0] + (k - d[1]) * xj[1] - d[5] * xj[2];
+      y2 += -d[4] * xj[0] - d[5] * xj[1] + (k - d[2]) * xj[2];
+    }
+    y[3 * i] = y0;
+    y[3 * i + 1] = y1;
+    y[3 * i + 2] = y2;
   }
 }
 
@@ -106,17 +119,19 @@ SolveStats solve_coupled_direct(const SparseMatrixR& K, const VertexBlocks& D, c
                                 Positions& X) {
   const int n = static_cast<int>(K.rows());
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<size_t>(3 * K.nonZeros() + 9 * D.size()));
-  for (int i = 0; i < n; ++i)
-    for (SparseMatrixR::InnerIterator it(K, i); it; ++it)
-      for (int c = 0; c < 3; ++c)
-        entries.emplace_back(3 * i + c, 3 * static_cast<int>(it.col()) + c, it.value());
+  entries.reserve(static_cast<size_t>(12 * K.nonZeros()));
   static constexpr int kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
-  for (size_t i = 0; i < D.size(); ++i)
-    for (int q = 0; q < 6; ++q) {
-      const int a = 3 * static_cast<int>(i) + kRow[q], b = 3 * static_cast<int>(i) + kCol[q];
-      entries.emplace_back(a, b, -D[i][q]);
-      if (a != b) entries.emplace_back(b, a, -D[i][q]);
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  for (int i = 0; i < n; ++i)
+    for (int p = outer[i]; p < outer[i + 1]; ++p) {
+      const int j = inner[p];
+      for (int c = 0; c < 3; ++c) entries.emplace_back(3 * i + c, 3 * j + c, K.valuePtr()[p]);
+      if (D.empty()) continue;
+      for (int q = 0; q < 6; ++q) {
+        entries.emplace_back(3 * i + kRow[q], 3 * j + kCol[q], -D[p][q]);
+        if (kRow[q] != kCol[q]) entries.emplace_back(3 * i + kCol[q], 3 * j + kRow[q], -D[p][q]);
+      }
     }
   Eigen::SparseMatrix<double> S(3 * n, 3 * n);
   S.setFromTriplets(entries.begin(), entries.end());

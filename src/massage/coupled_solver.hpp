@@ -1,9 +1,9 @@
 #pragma once
 /// Solvers for the coupled system (K ⊗ I₃ − D) x = r, with K n×n on the fixed pattern (eq. 7) and
-/// D block diagonal (one symmetric 3×3 block per vertex): the point-to-plane distance term
-/// (massage.hpp, "distance_term": "plane") takes α_i(1−ε_i)(1−μ)(I − n_i n_iᵀ) off the isotropic
-/// α_i of K's diagonal, which couples x, y and z only within a vertex. So the 3n×3n matrix has
-/// 3×3 blocks on K's pattern, and every product is K's n×3 product minus n small ones.
+/// D one symmetric 3×3 block per entry of K's pattern: the point-to-plane distance term
+/// (massage.hpp, "distance_term": "plane", plane_term.hpp) takes tangential projectors off the
+/// isotropic terms of B, which couples x, y and z. So the 3n×3n matrix has 3×3 blocks on K's
+/// pattern, and a product is one pass over the pattern with a 3×3 block per entry.
 ///
 /// BiCGSTAB here uses one set of scalars for the whole 3n-vector (the columns are coupled) and
 /// the ILU(0) factors of K with D's mean diagonal taken off (an isotropic preconditioner on the
@@ -15,7 +15,8 @@
 
 namespace sm {
 
-/// The blocks of D, 6 values per vertex (xx, yy, zz, xy, xz, yz); an empty vector is D = 0.
+/// The blocks of D, 6 values per slot of K's value array (xx, yy, zz, xy, xz, yz); an empty
+/// vector is D = 0.
 using VertexBlocks = std::vector<std::array<double, 6>>;
 
 /// Y = (K ⊗ I₃ − D) X, X and Y n×3 (row i is vertex i's x, y, z).

@@ -69,8 +69,8 @@ struct MassageOptions {
   bool pin_boundary = false;   ///< "pin_boundary": boundary vertices of M keep their position
   std::vector<int> pinned;     ///< "pinned": vertex indices of M that keep their position
   DistanceTerm distance_term = DistanceTerm::Point;  ///< "distance_term": "point" | "plane"
-  double tangential_stiffness = 0.05;  ///< "tangential_stiffness": ε of the plane term, (0, 1]
-  double tangential_adapt = 0.0;       ///< "tangential_adapt": ε's rise with the area change
+  double tangential_stiffness = 0.2;   ///< "tangential_stiffness": ε of the plane term, (0, 1]
+  double tangential_adapt = 5.0;       ///< "tangential_adapt": ε's rise with the area change
 };
 
 inline constexpr EnumName<SolverKind> kSolverKindNames[] = {{"iterative", SolverKind::Iterative},

@@ -160,17 +160,13 @@ bool MassageRun::assemble(IterationStats& it) {
 // The plane term's blocks D for the current correspondences, their part of the right-hand side
 // (−D v̂), and the preconditioner's matrix: K with D's mean diagonal taken off.
 void MassageRun::add_plane_term() {
-  plane_blocks(v_hat_, reference_.mesh().F, normals_n_, alpha_, epsilon_, mu_, s_.pinned, D_);
+  const PlaneInputs in{&s_.pattern, &s_.F,     &M_.V,   &v_hat_,   &reference_.mesh().F,
+                       &normals_n_, &reference_.samples(), &w_hat_, &alpha_, &beta_,
+                       &epsilon_,   &s_.pinned, mu_};
+  plane_blocks(in, D_, rhs_);
   double* kp = K_pre_.valuePtr();
-  std::copy(K_.valuePtr(), K_.valuePtr() + K_.nonZeros(), kp);
-  for (int i = 0; i < static_cast<int>(D_.size()); ++i) {
-    const std::array<double, 6>& d = D_[i];
-    const Vec3 p = v_hat_[i].point;
-    rhs_(i, 0) -= d[0] * p.x() + d[3] * p.y() + d[4] * p.z();
-    rhs_(i, 1) -= d[3] * p.x() + d[1] * p.y() + d[5] * p.z();
-    rhs_(i, 2) -= d[4] * p.x() + d[5] * p.y() + d[2] * p.z();
-    kp[s_.pattern.diagonal_slot(i)] -= (d[0] + d[1] + d[2]) / 3.0;
-  }
+  const double* k = K_.valuePtr();
+  for (size_t p = 0; p < D_.size(); ++p) kp[p] = k[p] - (D_[p][0] + D_[p][1] + D_[p][2]) / 3.0;
 }
 
 // K v = rhs from a warm start; on success M takes the solution. False (and the run failed) when

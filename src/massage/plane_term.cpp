@@ -6,7 +6,7 @@
 namespace sm {
 namespace {
 
-constexpr int kSmoothingPasses = 4;  // rings the area change is averaged over (about)
+constexpr int kSmoothingPasses = 12;  // Jacobi passes of 1-ring averaging of the area change
 
 double triangle_area(const Positions& V, const Triangles& F, int t) {
   const Vec3 a = V.row(F(t, 0)).transpose();
@@ -47,25 +47,62 @@ Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, con
   return eps;
 }
 
-void plane_blocks(const std::vector<SurfacePoint>& v_hat, const Triangles& N_F,
-                  const Positions& normals, const Eigen::VectorXd& alpha,
-                  const Eigen::VectorXd& epsilon, double mu,
-                  const std::vector<unsigned char>& pinned, VertexBlocks& D) {
-  const int n = static_cast<int>(v_hat.size());
-  D.assign(n, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+namespace {
+
+// Adds d (I − n nᵀ) to a block, in the order xx, yy, zz, xy, xz, yz; returns the block applied to
+// the point p, (d (I − n nᵀ)) p.
+Vec3 add_projector(std::array<double, 6>& block, double d, const Vec3& nrm, const Vec3& p) {
+  block[0] += d * (1.0 - nrm.x() * nrm.x());
+  block[1] += d * (1.0 - nrm.y() * nrm.y());
+  block[2] += d * (1.0 - nrm.z() * nrm.z());
+  block[3] -= d * nrm.x() * nrm.y();
+  block[4] -= d * nrm.x() * nrm.z();
+  block[5] -= d * nrm.y() * nrm.z();
+  return d * (p - nrm * nrm.dot(p));
+}
+
+}  // namespace
+
+void plane_blocks(const PlaneInputs& in, VertexBlocks& D, Positions& rhs) {
+  const SystemPattern& pattern = *in.pattern;
+  const std::vector<unsigned char>& pinned = *in.pinned;
+  const Eigen::VectorXd& eps = *in.epsilon;
+  D.assign(pattern.shape_matrix().nonZeros(), {0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+  const int n = pattern.size();
   for (int i = 0; i < n; ++i) {
-    const SurfacePoint& sp = v_hat[i];
-    const double d = (1.0 - mu) * alpha[i] * (1.0 - epsilon[i]);
+    const SurfacePoint& sp = (*in.v_hat)[i];
+    const double d = (1.0 - in.mu) * (*in.alpha)[i] * (1.0 - eps[i]);
     if (pinned[i] || sp.triangle < 0 || !(d > 0.0)) continue;
     Vec3 nrm = Vec3::Zero();
-    for (int a = 0; a < 3; ++a) nrm += sp.bary[a] * normals.row(N_F(sp.triangle, a)).transpose();
-    const double len = nrm.norm();
-    if (!(len > 0.0)) continue;  // no normal: point-to-point
-    nrm /= len;
-    // d (I − n nᵀ), in the order xx, yy, zz, xy, xz, yz.
-    D[i] = {d * (1.0 - nrm.x() * nrm.x()), d * (1.0 - nrm.y() * nrm.y()),
-            d * (1.0 - nrm.z() * nrm.z()), -d * nrm.x() * nrm.y(),
-            -d * nrm.x() * nrm.z(),        -d * nrm.y() * nrm.z()};
+    for (int a = 0; a < 3; ++a)
+      nrm += sp.bary[a] * in.normals_n->row((*in.N_F)(sp.triangle, a)).transpose();
+    if (!(nrm.norm() > 0.0)) continue;  // no normal: point-to-point
+    nrm.normalize();
+    rhs.row(i) -= add_projector(D[pattern.diagonal_slot(i)], d, nrm, sp.point).transpose();
+  }
+  const Triangles& F = *in.F;
+  const Positions& V = *in.V;
+  for (size_t j = 0; j < in.w_hat->size(); ++j) {
+    const SurfacePoint& sp = (*in.w_hat)[j];
+    if (sp.triangle < 0) continue;
+    const int t = sp.triangle;
+    const Vec3 p0 = V.row(F(t, 0)).transpose();
+    Vec3 nrm = (V.row(F(t, 1)).transpose() - p0).cross(V.row(F(t, 2)).transpose() - p0);
+    if (!(nrm.norm() > 0.0)) continue;
+    nrm.normalize();
+    const double e = (eps[F(t, 0)] + eps[F(t, 1)] + eps[F(t, 2)]) / 3.0;
+    const double d = (1.0 - in.mu) * (*in.beta)[static_cast<int>(j)] * (1.0 - e);
+    if (!(d > 0.0)) continue;
+    const Vec3 w = in.samples->row(static_cast<int>(j)).transpose();
+    const std::array<int, 9>& slot = pattern.triangle_slots(t);
+    for (int a = 0; a < 3; ++a) {
+      if (pinned[F(t, a)]) continue;
+      for (int b = 0; b < 3; ++b) {
+        const double dab = d * sp.bary[a] * sp.bary[b];
+        if (dab != 0.0) add_projector(D[slot[3 * a + b]], dab, nrm, Vec3::Zero());
+      }
+      rhs.row(F(t, a)) -= (d * sp.bary[a] * (w - nrm * nrm.dot(w))).transpose();
+    }
   }
 }
 

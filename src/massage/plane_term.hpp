@@ -11,24 +11,41 @@
 
 #include "geometry/bvh.hpp"
 #include "massage/coupled_solver.hpp"
+#include "massage/system.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {
 
 /// ε_i per vertex (n): `stiffness` everywhere, raised where the surface stretches between the
 /// template T and the start S: ε_i = min(1, stiffness + adapt · s_i), s_i the magnitude of the
-/// log area ratio log(area_S / area_T) of the triangles around i, smoothed over a few rings first
+/// log area ratio log(area_S / area_T) of the triangles around i, smoothed by 12 passes of 1-ring
+/// averaging first
 /// (so that the oscillating area change of a tangential drift averages out and a real stretch
 /// stays). Boundary vertices take 1 (point-to-point: a boundary has no tangent plane to slide in
 /// across it).
 Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, const Triangles& F,
                                      const Topology& topology, double stiffness, double adapt);
 
-/// D (see above) for the current correspondences; pinned and isolated vertices get none.
-/// `normals`: N's vertex normals (N's vertex count × 3).
-void plane_blocks(const std::vector<SurfacePoint>& v_hat, const Triangles& N_F,
-                  const Positions& normals, const Eigen::VectorXd& alpha,
-                  const Eigen::VectorXd& epsilon, double mu,
-                  const std::vector<unsigned char>& pinned, VertexBlocks& D);
+/// The plane term's blocks D on the pattern's slots (nnz) and its part of the right-hand side
+/// (rhs −= D-part of the targets), for the current correspondences. Vertex i's term as above;
+/// sample w_j's term (eq. 4's β-part) the same with M's normal n_j on the triangle ŵ_j lies on and
+/// ε_j the mean of that triangle's ε: (1−μ)β_j(1−ε_j) b_a b_b (I − n_j n_jᵀ) on slot (a, b).
+/// Rows of pinned vertices get none. `normals_n`: N's vertex normals.
+struct PlaneInputs {
+  const SystemPattern* pattern;
+  const Triangles* F;         // M's (= the pattern's) triangles
+  const Positions* V;         // M's positions
+  const std::vector<SurfacePoint>* v_hat;  // on N, per vertex of M
+  const Triangles* N_F;
+  const Positions* normals_n;
+  const Positions* samples;                // w_j
+  const std::vector<SurfacePoint>* w_hat;  // on M, per sample
+  const Eigen::VectorXd* alpha;
+  const Eigen::VectorXd* beta;
+  const Eigen::VectorXd* epsilon;
+  const std::vector<unsigned char>* pinned;
+  double mu;
+};
+void plane_blocks(const PlaneInputs& in, VertexBlocks& D, Positions& rhs);
 
 }  // namespace sm
