@@ -171,6 +171,8 @@ void print_captured(const fs::path& dir, int iterations, int step) {
   std::printf("| setting | mean shear (input) | mean shear | dist. to input rms / max | folded | "
               "smallest area ratio | s |\n|---|---|---|---|---|---|---|\n");
   for (const Setting& s : settings()) {
+    // The paper's direct solves take minutes here; its collapse on the gallop is known (δ = 0).
+    if (s.name.rfind("paper", 0) == 0 || s.name == "plane eps 0.05") continue;
     MassageOptions o;
     o.iterations = iterations;
     s.apply(o);
