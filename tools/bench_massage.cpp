@@ -145,6 +145,11 @@ int main(int argc, char** argv) {
   app.add_option("--shape-target", shape_target, "right-hand side of the shape system (default template)")
       ->type_name("zero|template")
       ->check(sm::cli::one_of({"zero", "template"}));
+  std::string distance_term;
+  app.add_option("--distance-term", distance_term,
+                 "the distance term (default point; plane: eps 0.2, adapt 5)")
+      ->type_name("point|plane")
+      ->check(sm::cli::one_of({"point", "plane"}));
   app.add_flag("--exact", exact, "exact closest points instead of the local search");
   app.add_flag("--verbose", verbose, "every iteration's figures");
   app.add_option("--repeat", repeat, "run every case R times and report the fastest run")
@@ -162,11 +167,14 @@ int main(int argc, char** argv) {
     options.shape_target =
         shape_target == "template" ? ShapeTargetKind::Template : ShapeTargetKind::Zero;
   if (exact) options.closest_points = ClosestPointMode::Exact;
+  if (distance_term == "plane") options.distance_term = DistanceTerm::Plane;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   std::printf(
-      "bench_massage: %d thread(s), %d iterations, %s solver (tolerance %g), %s closest points, "
-      "best of %d run(s)\n",
-      threads, options.iterations, options.solver == SolverKind::Direct ? "direct" : "iterative",
+      "bench_massage: %d thread(s), %d iterations, %s distance term, %s solver (tolerance %g), "
+      "%s closest points, best of %d run(s)\n",
+      threads, options.iterations,
+      options.distance_term == DistanceTerm::Plane ? "plane" : "point",
+      options.solver == SolverKind::Direct ? "direct" : "iterative",
       options.solver_tolerance,
       options.closest_points == ClosestPointMode::Exact ? "exact" : "local", repeat);
   for (int size : sizes) {

@@ -42,6 +42,7 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
   s.order = banded_order(templ);
   const TriMesh T{to_new_order(s.order, templ.V), to_new_order(s.order, templ.F)};
   s.F = T.F;
+  s.templ = T.V;
   s.topology = std::make_shared<const Topology>(build_topology(T));
   {
     std::vector<Eigen::Triplet<double>> entries;

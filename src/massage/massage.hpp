@@ -35,6 +35,14 @@ enum class ClosestPointMode {
   Exact,  ///< exact BVH query for every point in every iteration
 };
 
+/// The distance term of vertex i of M (eq. 4's α-part).
+enum class DistanceTerm {
+  Point,  ///< α_i ‖v_i − v̂_i‖², the paper's: as stiff along the surface as off it
+  Plane,  ///< α_i [(nᵀ(v_i − v̂_i))² + ε_i ‖tangential part‖²], soft along N (plane_term.hpp)
+};
+inline constexpr EnumName<DistanceTerm> kDistanceTermNames[] = {{"point", DistanceTerm::Point},
+                                                                {"plane", DistanceTerm::Plane}};
+
 /// Every tunable of the optimizer; the JSON config's "massage" object maps onto it one-to-one
 /// (key names in quotes).
 struct MassageOptions {
@@ -60,6 +68,9 @@ struct MassageOptions {
   int walk_max_steps = 16;     ///< "walk_max_steps": local search moves before the exact query
   bool pin_boundary = false;   ///< "pin_boundary": boundary vertices of M keep their position
   std::vector<int> pinned;     ///< "pinned": vertex indices of M that keep their position
+  DistanceTerm distance_term = DistanceTerm::Point;  ///< "distance_term": "point" | "plane"
+  double tangential_stiffness = 0.2;   ///< "tangential_stiffness": ε of the plane term, (0, 1]
+  double tangential_adapt = 5.0;       ///< "tangential_adapt": ε's rise with the area change
 };
 
 inline constexpr EnumName<SolverKind> kSolverKindNames[] = {{"iterative", SolverKind::Iterative},
@@ -127,6 +138,21 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
       field<&O::pinned>("pinned", indices("vertex indices"),
                         "0-based vertex indices of M that keep their position exactly, below "
                         "M's vertex count (for glTF input: of the welded vertices)"),
+      field<&O::distance_term>("distance_term", choice(kDistanceTermNames),
+                               "vertex i's distance term (eq. 4): `\"point\"` α‖v − v̂‖², the "
+                               "paper's; `\"plane\"` α[(n·(v − v̂))² + ε‖tangential part‖²] "
+                               "with n N's normal at v̂ (point-to-plane, as in ICP: M slides "
+                               "along N, boundary vertices stay point-to-point). Same stationary "
+                               "points, reached faster along the surface; couples x, y, z (a "
+                               "3n × 3n system on A's pattern)"),
+      field<&O::tangential_stiffness>("tangential_stiffness", left_open(0, 1),
+                                      "ε of the `\"plane\"` term: the weight of the part of "
+                                      "v − v̂ along N against the part off it (1: `\"point\"`)"),
+      field<&O::tangential_adapt>("tangential_adapt", at_least(0),
+                                  "with `\"plane\"`: ε_i = min(1, tangential_stiffness + this × "
+                                  "|log area ratio| between the template and the start around "
+                                  "vertex i, smoothed over a few rings), stiff where the surface "
+                                  "stretches, soft where it bends isometrically; 0: ε everywhere"),
   };
   return fields;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "massage/plane_term.hpp"
 #include "mesh/timing.hpp"
 
 namespace sm {
@@ -91,6 +92,13 @@ MassageRun::MassageRun(const MassagerState& state, const Positions& start_in,
   move_limit_ = o_.tolerance * mean_edge_length(M_.V, s_.edges);
   K_ = s_.pattern.shape_matrix();
   A_values_.assign(K_.valuePtr(), K_.valuePtr() + K_.nonZeros());
+  plane_ = o_.distance_term == DistanceTerm::Plane;
+  if (plane_) {
+    normals_n_ = vertex_normals(N);
+    epsilon_ = tangential_stiffness(s_.templ, start_, s_.F, *s_.topology, o_.tangential_stiffness,
+                                    o_.tangential_adapt);
+    K_pre_ = K_;
+  }
   use_target_ = o_.shape_target == ShapeTargetKind::Template;
   if (use_target_)  // once per run, from the start (see shape_target.hpp)
     result_.target_fallback_vertices =
@@ -141,10 +149,24 @@ bool MassageRun::assemble(IterationStats& it) {
       rhs_.row(i) = start_.row(i);
     }
   }
+  if (plane_) add_plane_term();
   bool use_direct = o_.solver == SolverKind::Direct;
-  if (!use_direct && !ilu_.factor(K_, s_.pattern.ilu_schedule())) use_direct = true;
+  const SparseMatrixR& preconditioned = plane_ ? K_pre_ : K_;
+  if (!use_direct && !ilu_.factor(preconditioned, s_.pattern.ilu_schedule())) use_direct = true;
   it.seconds_assemble = seconds_since(t0);
   return use_direct;
+}
+
+// The plane term's blocks D for the current correspondences, their part of the right-hand side
+// (−D v̂), and the preconditioner's matrix: K with D's mean diagonal taken off.
+void MassageRun::add_plane_term() {
+  const PlaneInputs in{&s_.pattern, &s_.F,     &M_.V,   &v_hat_,   &reference_.mesh().F,
+                       &normals_n_, &reference_.samples(), &w_hat_, &alpha_, &beta_,
+                       &epsilon_,   &s_.pinned, mu_};
+  plane_blocks(in, D_, rhs_);
+  double* kp = K_pre_.valuePtr();
+  const double* k = K_.valuePtr();
+  for (size_t p = 0; p < D_.size(); ++p) kp[p] = k[p] - (D_[p][0] + D_[p][1] + D_[p][2]) / 3.0;
 }
 
 // K v = rhs from a warm start; on success M takes the solution. False (and the run failed) when
@@ -165,8 +187,10 @@ bool MassageRun::solve(IterationStats& it, bool use_direct, int k) {
   SolveStats solve;
   if (!use_direct) {
     const std::array<double, 3> scale = centred_scale(K_, rhs_, M_.V, s_.pinned);
-    solve = bicgstab(K_, ilu_, rhs_, X_, o_.solver_tolerance, o_.solver_max_iterations, workspace_,
-                     &scale);
+    solve = plane_ ? bicgstab_coupled(K_, D_, ilu_, rhs_, X_, o_.solver_tolerance,
+                                      o_.solver_max_iterations, workspace_, scale)
+                   : bicgstab(K_, ilu_, rhs_, X_, o_.solver_tolerance, o_.solver_max_iterations,
+                              workspace_, &scale);
     if (!solve.ok) {
       X_ = M_.V;
       use_direct = true;  // the robust path for this iteration
@@ -174,7 +198,7 @@ bool MassageRun::solve(IterationStats& it, bool use_direct, int k) {
   }
   if (use_direct) {
     const int iterative_steps = solve.iterations;
-    solve = direct_.solve(K_, rhs_, X_);
+    solve = plane_ ? solve_coupled_direct(K_, D_, rhs_, X_) : direct_.solve(K_, rhs_, X_);
     solve.iterations += iterative_steps;
   }
   it.seconds_solve = seconds_since(t0);

@@ -13,6 +13,7 @@
 
 #include "geometry/triangle_planes.hpp"
 #include "massage/correspondence.hpp"
+#include "massage/coupled_solver.hpp"
 #include "massage/linear_solver.hpp"
 #include "massage/massager_state.hpp"
 #include "mesh/timing.hpp"
@@ -45,6 +46,7 @@ class MassageRun {
 
  private:
   bool assemble(IterationStats& it);  // returns whether to take the direct solver
+  void add_plane_term();
   bool solve(IterationStats& it, bool use_direct, int k);
   void closest_points(IterationStats& it);
   void measure(IterationStats& it);
@@ -72,6 +74,13 @@ class MassageRun {
   bool use_target_ = false;
   double mu_ = 0.0;
   Ilu0 ilu_;
+  // The plane term (plane_term.hpp): ε per vertex, N's vertex normals, the blocks D and the
+  // isotropic matrix whose ILU(0) preconditions the coupled system.
+  bool plane_ = false;
+  Eigen::VectorXd epsilon_;
+  Positions normals_n_;
+  VertexBlocks D_;
+  SparseMatrixR K_pre_;
   BicgstabWorkspace workspace_;
   DirectSolver direct_;
   int k_ = 0;  // iterations done

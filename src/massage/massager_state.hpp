@@ -27,6 +27,7 @@ struct MassagerState {
   std::shared_ptr<const Topology> topology, topology_in;
   ShapeWeights weights;  // the caller's labels (weights())
   SparseMatrixR lambda;  // Λ relabelled
+  Positions templ;       // T's positions relabelled (the plane term's area change)
   SystemPattern pattern;
   ShapeTarget target;                     // with ShapeTargetKind::Template
   TriangleBvh bvh;                        // over the template; copied and refitted per run

@@ -28,6 +28,23 @@ const json& at(const json& j, const std::string& key, const std::string& where) 
   return *it;
 }
 
+double get_double(const json& j, const std::string& key, const std::string& where);
+
+json split_json(const CorrespondenceError& e) {
+  return {{"mean", json_number(e.mean)},
+          {"max", json_number(e.max)},
+          {"tangential_mean", json_number(e.tangential_mean)},
+          {"tangential_max", json_number(e.tangential_max)},
+          {"normal_mean", json_number(e.normal_mean)},
+          {"normal_max", json_number(e.normal_max)}};
+}
+
+CorrespondenceError split_from_json(const json& j, const std::string& w) {
+  return {get_double(j, "mean", w),          get_double(j, "max", w),
+          get_double(j, "tangential_mean", w), get_double(j, "tangential_max", w),
+          get_double(j, "normal_mean", w),     get_double(j, "normal_max", w)};
+}
+
 double get_double(const json& j, const std::string& key, const std::string& where) {
   const json& v = at(j, key, where);
   if (v.is_number()) return v.get<double>();
@@ -129,7 +146,9 @@ json to_json(const FrameSummary& s) {
     j["ground_truth"] = {{"mean_before", json_number(g.mean_before)},
                          {"max_before", json_number(g.max_before)},
                          {"mean_after", json_number(g.mean_after)},
-                         {"max_after", json_number(g.max_after)}};
+                         {"max_after", json_number(g.max_after)},
+                         {"split_before", split_json(g.split_before)},
+                         {"split_after", split_json(g.split_after)}};
   } else {
     j["ground_truth"] = nullptr;
   }
@@ -159,6 +178,11 @@ FrameSummary frame_summary_from_json(const json& j) {
     s.ground_truth =
         GroundTruthError{get_double(g, "mean_before", where), get_double(g, "max_before", where),
                          get_double(g, "mean_after", where), get_double(g, "max_after", where)};
+    // (Records written before the split have none: they keep zeros.)
+    if (g.contains("split_before"))
+      s.ground_truth->split_before = split_from_json(g["split_before"], where + ".split_before");
+    if (g.contains("split_after"))
+      s.ground_truth->split_after = split_from_json(g["split_after"], where + ".split_after");
   }
   s.warnings = get<std::vector<std::string>>(j, "warnings", w);
   return s;

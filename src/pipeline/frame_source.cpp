@@ -63,7 +63,7 @@ class ObjFolderSource : public FrameSource {
 };
 
 // ---------------------------------------------------------------------------------------------
-// The synthetic bending tube: generated into <output.dir>/input when the run starts (its clean
+// The synthetic bending tube or rolled sheet: generated into <output.dir>/input when the run starts (its clean
 // frames into <output.dir>/ground_truth), then read like a folder.
 
 class SyntheticSource : public ObjFolderSource {
@@ -77,7 +77,9 @@ class SyntheticSource : public ObjFolderSource {
   }
 
   std::string describe() const override {
-    return "synthetic bending tube, " + std::to_string(size()) + " frames of " +
+    const bool sheet = sequence_.config.shape == SyntheticShape::RolledSheet;
+    return std::string(sheet ? "synthetic rolled sheet, " : "synthetic bending tube, ") +
+           std::to_string(size()) + " frames of " +
            std::to_string(sequence_.rest.num_vertices()) + " vertices, generated into " +
            dir_.string() + " (ground truth in " + ground_truth_dir_.string() + ")";
   }

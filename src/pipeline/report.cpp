@@ -17,8 +17,8 @@
 namespace sm {
 using json = nlohmann::json;
 
-std::vector<std::string> summary_columns() {
-  return {"frame",
+std::vector<std::string> summary_columns(bool ground_truth) {
+  std::vector<std::string> columns = {"frame",
           "file",
           "vertices",
           "triangles",
@@ -38,10 +38,17 @@ std::vector<std::string> summary_columns() {
           "failure",
           "time",
           "folded_triangles"};
+  if (ground_truth)
+    for (const char* part : {"", "tangential_", "normal_"})
+      for (const char* what : {"mean_before", "max_before", "mean_after", "max_after"})
+        columns.push_back(std::string("truth_") + part + what);
+  return columns;
 }
 
 std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool timings) {
-  CsvWriter csv(summary_columns());
+  const bool truth = std::any_of(frames.begin(), frames.end(),
+                                 [](const FrameSummary& f) { return f.ground_truth.has_value(); });
+  CsvWriter csv(summary_columns(truth));
   for (const FrameSummary& f : frames) {
     csv.cell(f.frame).cell(f.file).cell(f.vertices).cell(f.triangles);
     csv.cell(f.shear_before.max).cell(f.shear_before.mean).cell(f.shear_before.p95);
@@ -54,6 +61,14 @@ std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool tim
     else
       csv.cell("");
     csv.cell(f.folded_triangles);
+    if (truth) {
+      const GroundTruthError g = f.ground_truth.value_or(GroundTruthError{});
+      const CorrespondenceError &b = g.split_before, &a = g.split_after;
+      for (double x : {g.mean_before, g.max_before, g.mean_after, g.max_after, b.tangential_mean,
+                       b.tangential_max, a.tangential_mean, a.tangential_max, b.normal_mean,
+                       b.normal_max, a.normal_mean, a.normal_max})
+        csv.cell(x);
+    }
     csv.end_row();
   }
   return csv.str();
@@ -203,24 +218,43 @@ json make_report(const ReportHeader& header, const std::vector<FrameSummary>& fr
 
   if (!header.ground_truth.empty()) {
     json list = json::array();
-    double before = 0, after = 0;
+    double before = 0, after = 0, tangential_before = 0, tangential_after = 0, normal_before = 0,
+           normal_after = 0;
     for (const FrameSummary& f : frames) {
       if (!f.ground_truth) continue;
       const GroundTruthError& g = *f.ground_truth;
       before += g.mean_before;
       after += g.mean_after;
+      const CorrespondenceError &b = g.split_before, &a = g.split_after;
+      tangential_before += b.tangential_mean;
+      tangential_after += a.tangential_mean;
+      normal_before += b.normal_mean;
+      normal_after += a.normal_mean;
       list.push_back({{"frame", f.frame},
                       {"mean_before", json_number(g.mean_before)},
                       {"max_before", json_number(g.max_before)},
                       {"mean_after", json_number(g.mean_after)},
-                      {"max_after", json_number(g.max_after)}});
+                      {"max_after", json_number(g.max_after)},
+                      {"tangential_mean_before", json_number(b.tangential_mean)},
+                      {"tangential_max_before", json_number(b.tangential_max)},
+                      {"tangential_mean_after", json_number(a.tangential_mean)},
+                      {"tangential_max_after", json_number(a.tangential_max)},
+                      {"normal_mean_before", json_number(b.normal_mean)},
+                      {"normal_max_before", json_number(b.normal_max)},
+                      {"normal_mean_after", json_number(a.normal_mean)},
+                      {"normal_max_after", json_number(a.normal_max)}});
     }
     r["ground_truth"] = {
         {"folder", header.ground_truth},
         {"unit", "mean edge length of the template"},
-        {"what", "distance of every vertex to its position on the clean (undrifted) frame"},
+        {"what", "distance of every vertex to its position on the clean (undrifted) frame; "
+                 "tangential: its part along the clean surface (vertex normal), normal: off it"},
         {"mean_before", json_number(before / n)},
         {"mean_after", json_number(after / n)},
+        {"tangential_mean_before", json_number(tangential_before / n)},
+        {"tangential_mean_after", json_number(tangential_after / n)},
+        {"normal_mean_before", json_number(normal_before / n)},
+        {"normal_mean_after", json_number(normal_after / n)},
         {"frames", list}};
   }
 

@@ -15,8 +15,9 @@ namespace sm {
 /// The columns of summary.csv: frame, file, vertices, triangles, shear_{max,mean,p95}_{before,
 /// after}, dist_out_to_in_{max,rms}, dist_in_to_out_{max,rms}, iterations, seconds, then status,
 /// failure, time (seconds into the animation for glTF input, empty otherwise) and
-/// folded_triangles.
-std::vector<std::string> summary_columns();
+/// folded_triangles; with `ground_truth` (a generated input), then truth_{,tangential_,normal_}
+/// {mean,max}_{before,after} (GroundTruthError, in template mean edge lengths).
+std::vector<std::string> summary_columns(bool ground_truth = false);
 
 /// summary.csv, one row per frame in order. Without `timings`, the seconds column holds 0.
 std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool timings);

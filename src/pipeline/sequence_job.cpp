@@ -263,7 +263,10 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     const double unit = mean_edge_length(plan.templ);
     const Eigen::VectorXd e_in = (file.mesh.V - *clean).rowwise().norm() / unit;
     const Eigen::VectorXd e_out = (V - *clean).rowwise().norm() / unit;
-    s.ground_truth = GroundTruthError{e_in.mean(), e_in.maxCoeff(), e_out.mean(), e_out.maxCoeff()};
+    const TriMesh truth{*clean, F};
+    s.ground_truth = GroundTruthError{e_in.mean(), e_in.maxCoeff(), e_out.mean(), e_out.maxCoeff(),
+                                      correspondence_error(file.mesh.V, truth, unit),
+                                      correspondence_error(V, truth, unit)};
   }
   s.seconds = c.output.timings ? seconds_since(t0) : 0.0;  // 0: records reproduce byte for byte
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geometry/distance.hpp"
+#include "geometry/ground_truth.hpp"
 #include "geometry/shear.hpp"
 #include "massage/massage.hpp"
 #include "pipeline/frame_sink.hpp"
@@ -36,6 +37,8 @@ enum class FrameStatus {
 struct GroundTruthError {
   double mean_before = 0.0, max_before = 0.0;  ///< the input (drifted) frame
   double mean_after = 0.0, max_after = 0.0;    ///< the output frame
+  /// The same split along and off the true surface (geometry/ground_truth.hpp).
+  CorrespondenceError split_before, split_after;
 };
 
 /// One row of summary.csv.

@@ -14,8 +14,6 @@
 namespace sm {
 namespace {
 
-constexpr int kWaves = 6;
-
 // Uniform double in [lo, hi) from a 64-bit generator: unlike std::uniform_real_distribution, the
 // same on every standard library.
 double uniform(std::mt19937_64& rng, double lo, double hi) {
@@ -31,14 +29,14 @@ struct Wave {
   double a_along;
 };
 
-std::vector<Wave> make_waves(int seed) {
-  std::mt19937_64 rng(static_cast<uint64_t>(seed) * 0x9E3779B97F4A7C15ull + 1);
+std::vector<Wave> make_waves(const SyntheticOptions& c) {
+  std::mt19937_64 rng(static_cast<uint64_t>(c.seed) * 0x9E3779B97F4A7C15ull + 1);
   std::vector<Wave> waves;
-  const double norm = 1.0 / std::sqrt(static_cast<double>(kWaves));
-  for (int w = 0; w < kWaves; ++w) {
+  const double norm = 1.0 / std::sqrt(static_cast<double>(c.drift_waves));
+  for (int w = 0; w < c.drift_waves; ++w) {
     Wave wave;
     wave.k_around = 2 + static_cast<int>(rng() % 3);
-    wave.k_along = uniform(rng, 1.5, 4.0);
+    wave.k_along = uniform(rng, 1.5, c.drift_cycles);
     wave.phase = uniform(rng, 0.0, 2.0 * M_PI);
     wave.speed = uniform(rng, 0.5, 1.5);
     wave.a_around = norm * uniform(rng, -1.0, 1.0);
@@ -58,11 +56,35 @@ Vec3 bent_point(double theta, double s, double r, double kappa) {
   return Vec3(cx + c * std::cos(ks), r * std::sin(theta), cz + c * std::sin(ks));
 }
 
+// Point at (u, s) on the sheet of width `width` rolled with curvature kappa: the line u = width/2
+// stays on the y axis, the sheet bends towards +z (an isometry: arc length u is kept).
+Vec3 rolled_point(double u, double s, double width, double kappa) {
+  const double a = u - 0.5 * width;
+  if (kappa == 0.0) return Vec3(a, s, 0.0);
+  const double ka = kappa * a;
+  return Vec3(std::sin(ka) / kappa, s, 2.0 * std::sin(0.5 * ka) * std::sin(0.5 * ka) / kappa);
+}
+
+double sheet_width(const SyntheticOptions& c) { return 2.0 * M_PI * c.radius; }
+
+// The sheet's mesh (make_grid, segments vertices across) and one texture coordinate per vertex.
+void make_sheet(SyntheticSequence& seq) {
+  const SyntheticOptions& c = seq.config;
+  seq.rest = make_grid(c.segments - 1, c.rings, sheet_width(c), c.length);
+  seq.rest.V.col(0).array() -= 0.5 * sheet_width(c);
+  seq.F = seq.rest.F;
+  seq.uv.resize(seq.rest.num_vertices(), 2);
+  for (int v = 0; v < seq.rest.num_vertices(); ++v)
+    seq.uv.row(v) << static_cast<double>(v % c.segments) / (c.segments - 1),
+        static_cast<double>(v / c.segments) / c.rings;
+  seq.F_uv = seq.F;
+}
+
 }  // namespace
 
 void check_synthetic_options(const SyntheticOptions& options) {
   check_ranges(options, "input.synthetic");
-  if (options.bend * M_PI / 180.0 * options.radius >= options.length)
+  if (options.shape == SyntheticShape::BendingTube && options.bend * M_PI / 180.0 * options.radius >= options.length)
     throw ConfigError(
         "input.synthetic.bend: the tube would fold onto itself: bend (in radians) times radius "
         "must stay below length");
@@ -72,6 +94,10 @@ SyntheticSequence make_synthetic_sequence(const SyntheticOptions& config) {
   check_synthetic_options(config);
   SyntheticSequence seq;
   seq.config = config;
+  if (config.shape == SyntheticShape::RolledSheet) {
+    make_sheet(seq);
+    return seq;
+  }
   const int nu = config.segments;
   seq.rest = make_cylinder(nu, config.rings, config.radius, config.length);
   seq.F = seq.rest.F;
@@ -93,15 +119,50 @@ SyntheticSequence make_synthetic_sequence(const SyntheticOptions& config) {
   return seq;
 }
 
+namespace {
+
+// The sheet's frame: the drift moves the (across, along) parameters, vanishing on the boundary.
+SyntheticFrame rolled_frame(const SyntheticSequence& seq, const std::vector<Wave>& waves,
+                            double tau, double kappa, double amplitude) {
+  const SyntheticOptions& c = seq.config;
+  const int nu = c.segments;
+  const int n = seq.rest.num_vertices();
+  const double width = sheet_width(c);
+  SyntheticFrame frame;
+  frame.clean.resize(n, 3);
+  frame.drifted.resize(n, 3);
+  for (int v = 0; v < n; ++v) {
+    const double u = width * (v % nu) / (nu - 1);
+    const double s = c.length * (v / nu) / c.rings;
+    double d_across = 0.0, d_along = 0.0;
+    for (const Wave& w : waves) {
+      const double arg = 2.0 * M_PI * (w.k_around * u / width + w.k_along * s / c.length +
+                                       w.speed * tau) + w.phase;
+      d_across += w.a_around * std::sin(arg);
+      d_along += w.a_along * std::sin(arg);
+    }
+    const double window = amplitude * std::sin(M_PI * u / width) * std::sin(M_PI * s / c.length);
+    frame.clean.row(v) = rolled_point(u, s, width, kappa).transpose();
+    frame.drifted.row(v) =
+        rolled_point(u + window * d_across, s + window * d_along, width, kappa).transpose();
+  }
+  return frame;
+}
+
+}  // namespace
+
 SyntheticFrame synthetic_frame(const SyntheticSequence& seq, int t) {
   const SyntheticOptions& c = seq.config;
   if (t < 0 || t >= c.frames)
     throw InputError("synthetic frame " + std::to_string(t) + " does not exist (" +
                      std::to_string(c.frames) + " frames)");
   const double tau = static_cast<double>(t) / (c.frames - 1);
-  const double kappa = c.bend * M_PI / 180.0 * 0.5 * (1.0 - std::cos(M_PI * tau)) / c.length;
+  const bool sheet = c.shape == SyntheticShape::RolledSheet;
+  const double span = sheet ? sheet_width(c) : c.length;  // what the bend angle spreads over
+  const double kappa = c.bend * M_PI / 180.0 * 0.5 * (1.0 - std::cos(M_PI * tau)) / span;
   const double amplitude = c.drift * (c.length / c.rings) * std::sin(0.5 * M_PI * tau);
-  const std::vector<Wave> waves = make_waves(c.seed);
+  const std::vector<Wave> waves = make_waves(c);
+  if (sheet) return rolled_frame(seq, waves, tau, kappa, amplitude);
   const int nu = c.segments;
   const int n = seq.rest.num_vertices();
   SyntheticFrame frame;
@@ -132,7 +193,8 @@ std::string synthetic_frame_name(const SyntheticSequence& seq, int t) {
 
 std::string format_synthetic_obj(const SyntheticSequence& seq, const Positions& V,
                                  const std::string& comment) {
-  std::string out = "# " + comment + "\ng tube\n";
+  const bool sheet = seq.config.shape == SyntheticShape::RolledSheet;
+  std::string out = "# " + comment + (sheet ? "\ng sheet\n" : "\ng tube\n");
   out.reserve(out.size() + 40 * (V.rows() + seq.uv.rows() + seq.F.rows()));
   for (int v = 0; v < V.rows(); ++v)
     out += "v " + format_number(V(v, 0)) + " " + format_number(V(v, 1)) + " " +
@@ -154,7 +216,10 @@ int write_synthetic_sequence(const SyntheticSequence& seq, const std::filesystem
   for (int t = 0; t < frames; ++t) {
     const SyntheticFrame frame = synthetic_frame(seq, t);
     const std::string name = synthetic_frame_name(seq, t);
-    const std::string what = "seqmassage synthetic bending tube, frame " + std::to_string(t) +
+    const std::string what = std::string("seqmassage synthetic ") +
+                             (seq.config.shape == SyntheticShape::RolledSheet ? "rolled sheet"
+                                                                             : "bending tube") +
+                             ", frame " + std::to_string(t) +
                              " of " + std::to_string(frames);
     write_file_atomic(drifted_dir / name,
                       format_synthetic_obj(seq, frame.drifted, what + ", drifted"));

@@ -58,6 +58,13 @@ TEST_CASE("summary.csv has the documented columns, in order") {
   CHECK(columns[17] == "failure");
   CHECK(columns[18] == "time");
   CHECK(columns[19] == "folded_triangles");
+  // With a ground truth (generated input), twelve more: all, tangential and normal parts.
+  const std::vector<std::string> truth = summary_columns(true);
+  REQUIRE(truth.size() == columns.size() + 12);
+  CHECK(std::vector<std::string>(truth.begin(), truth.begin() + 20) == columns);
+  CHECK(truth[20] == "truth_mean_before");
+  CHECK(truth[24] == "truth_tangential_mean_before");
+  CHECK(truth[31] == "truth_normal_max_after");
 }
 
 TEST_CASE("summary rows: failures with their reason, non-finite values, timings") {

@@ -111,3 +111,52 @@ TEST_CASE("synthetic frame names and invalid configs") {
   CHECK_THROWS_AS(make_synthetic_sequence(c), ConfigError);
   CHECK_THROWS_AS(synthetic_frame(make_synthetic_sequence(small_config()), 5), InputError);
 }
+
+TEST_CASE("the rolled sheet is isometric: every edge keeps its length, drifted vertices stay on "
+          "the cylinder and the boundary does not move") {
+  SyntheticOptions c = small_config();
+  c.shape = SyntheticShape::RolledSheet;
+  c.bend = 270.0;
+  const SyntheticSequence seq = make_synthetic_sequence(c);
+  CHECK(seq.rest.num_vertices() == c.segments * (c.rings + 1));
+  CHECK(seq.F.rows() == 2 * (c.segments - 1) * c.rings);
+  const SyntheticFrame first = synthetic_frame(seq, 0), last = synthetic_frame(seq, c.frames - 1);
+  CHECK(first.clean == seq.rest.V);
+  CHECK(first.drifted == seq.rest.V);
+  // Edges of the grid: straight along, chords of the roll across (equal to the flat length up
+  // to the chord's sagitta, tiny at these sizes), so compare the along ones exactly.
+  const double width = 2.0 * M_PI * c.radius;
+  const double R = width / (c.bend * M_PI / 180.0);  // radius of the roll at the last frame
+  for (int v = 0; v < last.clean.rows(); ++v) {
+    CHECK(std::abs(std::hypot(last.clean(v, 0), last.clean(v, 2) - R) - R) < 1e-12);
+    CHECK(std::abs(std::hypot(last.drifted(v, 0), last.drifted(v, 2) - R) - R) < 1e-12);
+  }
+  for (int v = 0; v + c.segments < last.clean.rows(); ++v)
+    CHECK(std::abs((last.clean.row(v + c.segments) - last.clean.row(v)).norm() -
+                   c.length / c.rings) < 1e-12);
+  const Eigen::VectorXd moved = (last.drifted - last.clean).rowwise().norm();
+  CHECK(moved.maxCoeff() > 0.1 * c.length / c.rings);
+  for (int v = 0; v < last.clean.rows(); ++v) {
+    const int i = v % c.segments, j = v / c.segments;
+    if (i == 0 || i == c.segments - 1 || j == 0 || j == c.rings) CHECK(moved[v] < 1e-12);
+  }
+  const std::string obj = format_synthetic_obj(seq, last.drifted, "x");
+  CHECK(obj.find("g sheet\n") != std::string::npos);
+}
+
+TEST_CASE("the drift keys change the field, their defaults keep the tube's bytes") {
+  const SyntheticSequence base = make_synthetic_sequence(small_config());
+  SyntheticOptions same = small_config();
+  same.drift_waves = 6;
+  same.drift_cycles = 4.0;
+  CHECK(synthetic_frame(make_synthetic_sequence(same), 4).drifted ==
+        synthetic_frame(base, 4).drifted);
+  SyntheticOptions more = small_config();
+  more.drift_waves = 3;
+  more.drift_cycles = 8.0;
+  CHECK(synthetic_frame(make_synthetic_sequence(more), 4).drifted !=
+        synthetic_frame(base, 4).drifted);
+  SyntheticOptions bad = small_config();
+  bad.drift_waves = 0;
+  CHECK_THROWS_AS(check_synthetic_options(bad), ConfigError);
+}
