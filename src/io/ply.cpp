@@ -257,7 +257,8 @@ int find_property(const PlyElement& e, std::string_view name, bool list) {
 
 }  // namespace
 
-TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* colors) {
+TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* colors,
+                  PlyVertexProperty* extra) {
   const PlyHeader header = parse_header(data, name);
   const PlyElement* vertex_element = nullptr;
   const PlyElement* face_element = nullptr;
@@ -292,6 +293,10 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
   const bool vertex_colors = colors && vrgb[0] >= 0 && vrgb[1] >= 0 && vrgb[2] >= 0;
   const bool face_colors = colors && frgb[0] >= 0 && frgb[1] >= 0 && frgb[2] >= 0;
   if (colors) *colors = PlyColors{};
+  const int extra_index = extra ? find_property(ve, extra->name, false) : -1;
+  if (extra && extra_index < 0)
+    throw InputError(name + ": the vertex element has no scalar property '" + extra->name + "'");
+  if (extra) extra->values.clear();
 
   const int64_t nv = ve.count;
   TriMesh mesh;
@@ -320,6 +325,7 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
               }
               if (vertex_colors && k == vrgb[c]) rgb[c] = to_channel(value, p.type);
             }
+            if (k == extra_index) extra->values.push_back(value);
           } else if (is_face && face_colors) {
             for (int c = 0; c < 3; ++c) {
               if (k == frgb[c]) rgb[c] = to_channel(value, p.type);

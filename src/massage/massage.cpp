@@ -22,6 +22,38 @@ void check_options(const MassageOptions& o, int n) {
     if (v < 0 || v >= n)
       bad("pinned", "vertex " + std::to_string(v) + " is out of range (the mesh has " +
                         std::to_string(n) + " vertices)");
+  if (!o.vertex_weights.empty() && static_cast<int>(o.vertex_weights.size()) != n)
+    bad("vertex_weights", std::to_string(o.vertex_weights.size()) +
+                              " weights, but the template has " + std::to_string(n) + " vertices");
+  for (size_t i = 0; i < o.vertex_weights.size(); ++i) {
+    const double w = o.vertex_weights[i];
+    if (!(w >= 0.0 && w <= 1.0)) {  // also NaN
+      std::ostringstream msg;
+      msg << "the weight of vertex " << i << " is " << w << ", not a number in [0, 1]";
+      bad("vertex_weights", msg.str());
+    }
+  }
+}
+
+// A_w = W A + (I − W): row i of A scaled by w_i, 1 − w_i added to its diagonal. Rows with
+// w_i = 1 are copied untouched (bit for bit), rows with w_i = 0 are pinned anyway.
+void weight_shape_rows(MassagerState& s) {
+  const int n = s.pattern.size();
+  s.vertex_weight.assign(n, 1.0);
+  for (int v = 0; v < n; ++v) s.vertex_weight[s.order.vertex_rank[v]] = s.options.vertex_weights[v];
+  s.weighted = std::any_of(s.vertex_weight.begin(), s.vertex_weight.end(),
+                           [](double w) { return w != 1.0; });
+  if (!s.weighted) return;
+  s.weighted_shape = s.pattern.shape_matrix();
+  double* values = s.weighted_shape.valuePtr();
+  const int* outer = s.weighted_shape.outerIndexPtr();
+  for (int i = 0; i < n; ++i) {
+    const double w = s.vertex_weight[i];
+    if (w == 1.0) continue;
+    if (w == 0.0) s.pinned[i] = 1;
+    for (int p = outer[i]; p < outer[i + 1]; ++p) values[p] *= w;
+    values[s.pattern.diagonal_slot(i)] += 1.0 - w;
+  }
 }
 
 }  // namespace
@@ -72,6 +104,7 @@ Massager::Massager(const TriMesh& templ, MassageOptions options, const char* nam
       s.isolated[v] = s.pinned[v] = 1;
       ++s.num_isolated;
     }
+  if (!s.options.vertex_weights.empty()) weight_shape_rows(s);
   for (unsigned char p : s.pinned) s.num_pinned += p;
 }
 

@@ -11,6 +11,7 @@
 /// barycentric coordinates of the closest point of M to the sample w_j; δ = 0 as in the paper, or
 /// T's Laplacian turned into the start frame (shape_target.hpp), fixed for the run. The sparsity of
 /// K is A's (with its diagonal) for every iteration, frame and reference: it is analysed once.
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -71,6 +72,15 @@ struct MassageOptions {
   DistanceTerm distance_term = DistanceTerm::Point;  ///< "distance_term": "point" | "plane"
   double tangential_stiffness = 0.2;   ///< "tangential_stiffness": ε of the plane term, (0, 1]
   double tangential_adapt = 5.0;       ///< "tangential_adapt": ε's rise with the area change
+  /// "vertex_weights": a file of per-vertex weights (a text file of numbers, or "file.ply#name",
+  /// a scalar vertex property of a PLY file), read by the jobs into `vertex_weights`; the
+  /// Massager itself reads only the vector.
+  std::filesystem::path vertex_weights_file;
+  /// Per-vertex weights w_i in [0, 1], one per vertex of M in the caller's labels, or empty (all
+  /// 1). Row i of the shape system becomes w_i (A v − δ)_i + (1 − w_i)(v_i − p_i) = 0, p_i the
+  /// start position; w_i = 0 pins vertex i (docs/method-vertex-weights.md). Not a config key:
+  /// the jobs fill it from `vertex_weights_file`, code (bindings) sets it directly.
+  std::vector<double> vertex_weights;
 };
 
 inline constexpr EnumName<SolverKind> kSolverKindNames[] = {{"iterative", SolverKind::Iterative},
@@ -153,6 +163,14 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
                                   "|log area ratio| between the template and the start around "
                                   "vertex i, smoothed over a few rings), stiff where the surface "
                                   "stretches, soft where it bends isometrically; 0: ε everywhere"),
+      field<&O::vertex_weights_file>(
+          "vertex_weights", any_value(),
+          "per-vertex weights in [0, 1], one per vertex of M (for glTF input: of the welded "
+          "vertices): a text file of numbers separated by blanks or line breaks, or "
+          "`\"file.ply#name\"`, the scalar vertex property `name` of a PLY file. 1 is the "
+          "default behaviour, 0 keeps the vertex at its input position (like `pinned`), values "
+          "between blend the vertex's shape equation (eq. 6) with \"stay at the input\" "
+          "(docs/method-vertex-weights.md)"),
   };
   return fields;
 }

@@ -90,7 +90,7 @@ MassageRun::MassageRun(const MassagerState& state, const Positions& start_in,
   d_alpha_.resize(n);
   d_beta_.resize(W.rows());
   move_limit_ = o_.tolerance * mean_edge_length(M_.V, s_.edges);
-  K_ = s_.pattern.shape_matrix();
+  K_ = s_.shape();
   A_values_.assign(K_.valuePtr(), K_.valuePtr() + K_.nonZeros());
   plane_ = o_.distance_term == DistanceTerm::Plane;
   if (plane_) {
@@ -103,6 +103,13 @@ MassageRun::MassageRun(const MassagerState& state, const Positions& start_in,
   if (use_target_)  // once per run, from the start (see shape_target.hpp)
     result_.target_fallback_vertices =
         s_.target.evaluate(start_, s_.F, s_.lambda, *s_.topology, delta_);
+  if (s_.weighted) {  // δ_w = W δ + (I − W) p, p the start (docs/method-vertex-weights.md)
+    if (!use_target_) delta_.setZero(n, 3);
+    use_target_ = true;
+    for (int i = 0; i < n; ++i)
+      if (const double w = s_.vertex_weight[i]; w != 1.0)
+        delta_.row(i) = w * delta_.row(i) + (1.0 - w) * start_.row(i);
+  }
 }
 
 MassageRun::Step MassageRun::step() {
@@ -248,7 +255,7 @@ void MassageRun::measure(IterationStats& it) {
   const int n = s_.pattern.size();
   for (int i = 0; i < n; ++i) d_alpha_[i] = s_.isolated[i] ? 0.0 : std::sqrt(v_hat_[i].dist2);
   for (int j = 0; j < d_beta_.size(); ++j) d_beta_[j] = std::sqrt(w_hat_[j].dist2);
-  multiply(s_.pattern.shape_matrix(), M_.V, AV_);
+  multiply(s_.shape(), M_.V, AV_);
   if (use_target_) AV_ -= delta_;
   it.energy = mu_ * AV_.squaredNorm() +
               (1.0 - mu_) * (alpha_.dot(d_alpha_.cwiseAbs2()) + beta_.dot(d_beta_.cwiseAbs2()));

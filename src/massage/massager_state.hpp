@@ -37,6 +37,13 @@ struct MassagerState {
   int num_pinned = 0;
   std::vector<unsigned char> isolated;  // n flags: vertices in no triangle (also pinned)
   int num_isolated = 0;
+  /// With per-vertex weights other than 1 (vertex_weights): w_i in the internal order, and the
+  /// shape matrix A_w = W A + (I − W) on the pattern (docs/method-vertex-weights.md).
+  bool weighted = false;
+  std::vector<double> vertex_weight;
+  SparseMatrixR weighted_shape;
+  /// The shape matrix of the runs: A_w when weighted, else A (the pattern's).
+  const SparseMatrixR& shape() const { return weighted ? weighted_shape : pattern.shape_matrix(); }
 };
 
 }  // namespace sm

@@ -24,7 +24,9 @@ double longest_edge2(const Positions& V, const Triangles& F, int t) {
 }  // namespace
 
 FoldCount count_folded_triangles(const Triangles& F, const Topology& topology,
-                                 const Positions& input, const Positions& output) {
+                                 const Positions& input, const Positions& output,
+                                 std::vector<int>* folded) {
+  if (folded) folded->clear();
   const int m = static_cast<int>(F.rows());
   Positions unit(m, 3);  // unit input normals, zero for degenerate input triangles
   std::vector<char> degenerate(size_t(m), 0);
@@ -49,7 +51,10 @@ FoldCount count_folded_triangles(const Triangles& F, const Topology& topology,
       ++count.folded_input;
       continue;
     }
-    if (area_normal(output, F, t).dot(n_in) < 0.0) ++count.folded;
+    if (area_normal(output, F, t).dot(n_in) < 0.0) {
+      ++count.folded;
+      if (folded) folded->push_back(t);
+    }
   }
   return count;
 }

@@ -113,7 +113,11 @@ std::string frame_config_hash(const SequenceJobOptions& config) {
   j["input"].erase("range");
   j["output"].erase("timings");
   j["output"].erase("dir");  // a moved output folder keeps its records
-  return sha256_hex(j.dump() + "\n" + version_info().dump());
+  std::string text = j.dump() + "\n" + version_info().dump();
+  // The weights read from massage.vertex_weights: a changed file is a changed config.
+  const std::vector<double>& w = config.massage.vertex_weights;
+  if (!w.empty()) text.append(reinterpret_cast<const char*>(w.data()), w.size() * sizeof(double));
+  return sha256_hex(text);
 }
 
 std::string template_hash(const TriMesh& templ) {

@@ -10,6 +10,7 @@
 #include "io/atomic_file.hpp"
 #include "io/mesh_file.hpp"
 #include "io/off.hpp"
+#include "io/vertex_weights.hpp"
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
@@ -157,6 +158,9 @@ MeshJobPlan plan_mesh_job(const MeshJobOptions& config) {
     plan.templ = plan.mesh;
   }
 
+  if (!c.massage.vertex_weights_file.empty())
+    plan.config.massage.vertex_weights = read_vertex_weights(
+        c.massage.vertex_weights_file, plan.templ.num_vertices(), plan.template_name);
   plan.massager =
       std::make_shared<const Massager>(plan.templ, c.massage, plan.template_name.c_str());
   std::vector<unsigned char> pinned(plan.mesh.num_vertices(), 0);

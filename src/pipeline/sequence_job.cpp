@@ -16,11 +16,13 @@
 #include "io/csv.hpp"
 #include "io/mesh_file.hpp"
 #include "io/sha256.hpp"
+#include "io/vertex_weights.hpp"
 #include "massage/reference.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/fold_check.hpp"
+#include "pipeline/fold_repair.hpp"
 #include "pipeline/frame_extras.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
@@ -150,6 +152,18 @@ RecordedOutput recorded(const fs::path& path, const std::string& bytes) {
   return {path.generic_string(), bytes.size(), sha256_hex(bytes)};
 }
 
+// The fold limit (checks.max_folded_*) that `folded` triangles exceed, or "".
+std::string fold_limit_exceeded(const SequencePlan& plan, int folded) {
+  const FrameCheckOptions& checks = plan.config.checks;
+  const int m = static_cast<int>(plan.templ.F.rows());
+  if (checks.max_folded_triangles && folded > *checks.max_folded_triangles)
+    return "checks.max_folded_triangles = " + std::to_string(*checks.max_folded_triangles);
+  if (checks.max_folded_fraction && folded > *checks.max_folded_fraction * m)
+    return "checks.max_folded_fraction = " + format_number(*checks.max_folded_fraction) + " of " +
+           std::to_string(m) + " triangles";
+  return "";
+}
+
 // Non-finite positions, then folds: the reason the optimized positions `V` of a frame read as
 // `input` fail the checks, or "".
 std::string check_output(const SequencePlan& plan, const TriMesh& input, const Positions& V,
@@ -159,19 +173,43 @@ std::string check_output(const SequencePlan& plan, const TriMesh& input, const P
   const FoldCount folds =
       count_folded_triangles(plan.templ.F, plan.massager->topology(), input.V, V);
   s.folded_triangles = folds.folded;
-  const FrameCheckOptions& checks = plan.config.checks;
-  const int m = static_cast<int>(plan.templ.F.rows());
-  std::string over;
-  if (checks.max_folded_triangles && folds.folded > *checks.max_folded_triangles)
-    over = "checks.max_folded_triangles = " + std::to_string(*checks.max_folded_triangles);
-  else if (checks.max_folded_fraction && folds.folded > *checks.max_folded_fraction * m)
-    over = "checks.max_folded_fraction = " + format_number(*checks.max_folded_fraction) + " of " +
-           std::to_string(m) + " triangles";
+  const std::string over = fold_limit_exceeded(plan, folds.folded);
   if (!over.empty())
     return "folded triangles: " + std::to_string(folds.folded) +
            " output triangles are folded over (normal opposed to the input frame's), more than " +
            over;
   return "";
+}
+
+// checks.repair_folds: when the optimized positions have more folded triangles than the limits
+// allow (with max_folded_triangles 0: any), solves again with the folded region pulled back
+// towards the input until no fold is left (fold_repair.hpp); a repaired frame takes the new
+// positions and says so in its warnings, a frame that cannot be repaired keeps its first result,
+// which check_output then fails as before. Frames within the limits are left as they are.
+void repair_frame(const SequencePlan& plan, const TriMesh& input, const Reference& reference,
+                  MassageResult& result, FrameSummary& s) {
+  if (!non_finite_positions(result.V).empty()) return;
+  const Topology& topology = plan.massager->topology();
+  std::vector<int> folded;
+  const int count =
+      count_folded_triangles(plan.templ.F, topology, input.V, result.V, &folded).folded;
+  if (count == 0 || fold_limit_exceeded(plan, count).empty()) return;
+  const FrameCheckOptions& checks = plan.config.checks;
+  const FoldRepair fix = repair_folds(plan.templ, plan.config.massage, topology, input.V,
+                                      reference, folded, checks.repair_rings, checks.repair_rounds);
+  const std::string what = "fold repair: " + std::to_string(count) + " folded triangles";
+  if (fix.repaired) {
+    result.V = fix.V;
+    s.warnings.push_back(what + " repaired in " + std::to_string(fix.rounds) + " rounds, " +
+                         std::to_string(fix.pinned) + " vertices kept at the input and " +
+                         std::to_string(fix.weighted) + " pulled towards it");
+  } else {
+    s.warnings.push_back(what + " not repaired: " +
+                         (fix.failure.empty() ? std::to_string(fix.folded_left) +
+                                                    " still folded after " +
+                                                    std::to_string(fix.rounds) + " rounds"
+                                              : "the re-solve failed: " + fix.failure));
+  }
 }
 
 void write_record(const SequencePlan& plan, const Work& w) {
@@ -217,6 +255,7 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
                                       shear_observer(plan.templ, shear_per_iteration))
                  : plan.massager->run(file.mesh.V, *reference);
     s.iterations = static_cast<int>(result.iterations.size());
+    if (result.ok && c.checks.repair_folds) repair_frame(plan, file.mesh, *reference, result, s);
     if (!result.ok) {
       s.status = FrameStatus::Failed;
       s.failure = "optimizer failed: " + result.failure;
@@ -353,6 +392,9 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
     plan.template_source = c.templ.mesh.filename().string();
     plan.templ = read_mesh(c.templ.mesh);
   }
+  if (!c.massage.vertex_weights_file.empty())
+    plan.config.massage.vertex_weights = read_vertex_weights(
+        c.massage.vertex_weights_file, plan.templ.num_vertices(), plan.template_source);
   plan.massager =
       std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
   plan.distance_layout =

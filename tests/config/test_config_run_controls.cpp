@@ -46,7 +46,8 @@ TEST_CASE(
   CHECK_FALSE(c.resume);
   const json j = to_json(c);
   CHECK(j["checks"] ==
-        json::parse(R"({"max_folded_triangles": null, "max_folded_fraction": 0.005})"));
+        json::parse(R"({"max_folded_triangles": null, "max_folded_fraction": 0.005,
+                         "repair_folds": true, "repair_rings": 2, "repair_rounds": 4})"));
   CHECK(j["output"]["on_failure"] == "copy_input");
   CHECK(j["shard"] == json::parse(R"({"index": 0, "count": 1})"));
   CHECK(j["resume"] == false);
