@@ -16,8 +16,7 @@ inline constexpr std::string_view kTempSuffix = ".seqmassage-tmp";
 /// writer, so that processes sharing an output folder (shards) never touch each other's.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
-/// Reads a whole file (io/input_file.hpp: opened without blocking, only a regular file). Throws
-/// IoError naming the file when it cannot be opened or read, InputError when it is not a file.
+/// Reads a whole file. Throws IoError naming the file when it cannot be opened or read.
 std::string read_file(const std::filesystem::path& path);
 
 /// "<host>-<pid>" of this process (the host name with characters other than letters, digits,

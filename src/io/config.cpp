@@ -13,6 +13,10 @@ using json = nlohmann::json;
 
 namespace {
 
+/// Deepest nesting of arrays and objects in a config (its schema needs a handful): the parser's
+/// stack, and so its memory, stays linear in the text.
+constexpr int kConfigMaxDepth = 64;
+
 // ---------------------------------------------------------------------------------------------
 // Strict JSON: a SAX handler that builds the document, refuses duplicate keys and turns parse
 // errors into a message instead of an exception.

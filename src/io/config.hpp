@@ -6,13 +6,8 @@
 
 namespace sm {
 
-/// Deepest nesting of arrays and objects in a config (its schema needs a handful).
-inline constexpr int kConfigMaxDepth = 64;
-
-/// Parses JSON text strictly: no comments, no duplicate keys, no trailing content, no NUL byte,
-/// no nesting deeper than kConfigMaxDepth. Throws ConfigError "line L, column C: <reason>" (or
-/// "<path>: duplicate key ...", "<path>: nested deeper than 64 levels") on the first problem.
-/// Memory is linear in the text's size and depth (JSON paths are built only for a message).
+/// Parses JSON text strictly: no comments, no duplicate keys, no trailing content. Throws
+/// ConfigError "line L, column C: <reason>" (or "<path>: duplicate key ...") on the first problem.
 nlohmann::json parse_json_strict(std::string_view text);
 
 }  // namespace sm
