@@ -113,7 +113,7 @@ TEST_CASE("glTF: a symlink out of the model's folder and a FIFO are refused") {
 
 TEST_CASE("glTF: percent-encoded names are decoded once, '+' stays a plus, and are hashed") {
   TempDir dir("gltf_percent");
-  for (const std::string& name : {"my model.bin", "a+b.bin", "100%.bin"}) {
+  for (const std::string name : {"my model.bin", "a+b.bin", "100%.bin"}) {
     std::string uri = name;
     if (name == "my model.bin") uri = "my%20model.bin";
     if (name == "100%.bin") uri = "100%25.bin";
