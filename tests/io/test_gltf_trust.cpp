@@ -184,7 +184,8 @@ TEST_CASE("glTF: a finite POSITION too large for the geometry names the element 
   TempDir dir("gltf_huge");
   test::ModelBuilder b = test::node_animated_triangle();
   const int positions = b.m.meshes[0].primitives[0].attributes.at("POSITION");
-  const tinygltf::BufferView& v = b.m.bufferViews[size_t(b.m.accessors[size_t(positions)].bufferView)];
+  const tinygltf::Accessor& a = b.m.accessors[size_t(positions)];
+  const tinygltf::BufferView& v = b.m.bufferViews[size_t(a.bufferView)];
   const float huge = 1e30f;
   std::memcpy(b.m.buffers[0].data.data() + v.byteOffset + 4, &huge, sizeof huge);  // vertex 0, y
   fs::create_directories(dir / "model");
