@@ -33,8 +33,8 @@ inline constexpr int kGltfMaxJsonDepth = 128;
 /// be read and InputError for a truncated or malformed GLB, invalid JSON, JSON nested deeper than
 /// kGltfMaxJsonDepth, a buffer or image URI that is missing, absolute, outside the model's folder
 /// or not a regular file (io/gltf_resource.hpp), a buffer view outside its buffer, or a required
-/// extension this reader does not implement (anything but KHR_mesh_quantization, KHR_texture_transform, KHR_texture_basisu,
-/// EXT_texture_webp and KHR_materials_*).
+/// extension this reader does not implement (anything but KHR_mesh_quantization,
+/// KHR_texture_transform, KHR_texture_basisu, EXT_texture_webp and KHR_materials_*).
 GltfFile load_gltf_file(const std::filesystem::path& path);
 
 /// Whether extension `name` survives into a file written from this asset: the texture, material
