@@ -63,7 +63,7 @@ for t in "${targets[@]}"; do
   echo "fuzz: $t for ${seconds}s (log: ${log#"$root"/})"
   # shellcheck disable=SC2086
   if "$build/tests/fuzz/fuzz_$t" -max_total_time="$seconds" -print_final_stats=1 -timeout=10 \
-    -rss_limit_mb=2048 -artifact_prefix="$artifacts/" "${dict[@]}" ${FUZZ_ARGS:-} \
+    -rss_limit_mb=1024 -artifact_prefix="$artifacts/" "${dict[@]}" ${FUZZ_ARGS:-} \
     "$corpus" "${seeds[@]}" >"$log" 2>&1; then
     result="no finding"
   else

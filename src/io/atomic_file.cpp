@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/input_file.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -70,14 +71,7 @@ void write_file_atomic(const fs::path& path, std::string_view content) {
 }
 
 std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("cannot open", path, errno ? errno : ENOENT);
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) fail("cannot read", path, EISDIR);  // opens, but reads nothing
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) fail("cannot read", path, errno ? errno : EIO);
-  return s.str();
+  return read_input_file(path);
 }
 
 namespace {

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+
+#include "mesh/coordinate_limit.hpp"
 
 namespace sm {
 
@@ -156,7 +159,7 @@ const unsigned char* view_range(const GltfFile& file, int accessor, int view, ui
                      std::string(what) + " bufferView " + std::to_string(view) + " does not exist");
   }
   const tinygltf::BufferView& v = m.bufferViews[size_t(view)];
-  if (offset + size > v.byteLength) {
+  if (offset > v.byteLength || size > v.byteLength - offset) {  // no overflow on huge offsets
     throw_gltf_error(file.path, name_of(accessor),
                      std::string(what) + " needs bytes " + std::to_string(offset) + ".." +
                          std::to_string(offset + size) + " of bufferViews[" + std::to_string(view) +
@@ -190,23 +193,34 @@ std::vector<unsigned char> gltf_accessor_bytes(const GltfFile& file, int index) 
                      "componentType " + std::to_string(a.componentType) + " or type " +
                          std::to_string(a.type) + " is not valid in glTF 2.0");
   }
-  // A view-less accessor is all zeros plus its sparse values: cap its size (1 GiB) so that a
-  // corrupt count cannot ask for an absurd allocation (or overflow the bounds arithmetic).
+  // The count comes from the file: check it against the bytes that hold the data before
+  // allocating anything by it. A view-less accessor is all zeros plus its sparse values: cap its
+  // size (kGltfMaxViewlessBytes) so that a corrupt count cannot ask for an absurd allocation.
   if (a.count > (uint64_t(1) << 31) ||
-      (a.bufferView < 0 && uint64_t(a.count) * element > (uint64_t(1) << 30))) {
+      (a.bufferView < 0 && uint64_t(a.count) * element > kGltfMaxViewlessBytes)) {
     throw_gltf_error(file.path, name_of(index),
                      "count " + std::to_string(a.count) +
-                         " is too large for an accessor without "
-                         "bufferView");
+                         " is too large for an accessor without bufferView (at most " +
+                         std::to_string(kGltfMaxViewlessBytes / element) + " elements)");
   }
-  std::vector<unsigned char> out(a.count * element, 0);
+  const unsigned char* src = nullptr;
+  size_t stride = element;
   if (a.bufferView >= 0 && a.count > 0) {
     const size_t view_stride = size_t(a.bufferView) < m.bufferViews.size()
                                    ? m.bufferViews[size_t(a.bufferView)].byteStride
                                    : 0;
-    const size_t stride = view_stride != 0 ? view_stride : element;
-    const unsigned char* src = view_range(file, index, a.bufferView, a.byteOffset,
-                                          uint64_t(stride) * (a.count - 1) + element, "data");
+    if (view_stride != 0 && view_stride < element) {
+      throw_gltf_error(file.path, name_of(index),
+                       "bufferViews[" + std::to_string(a.bufferView) + "].byteStride " +
+                           std::to_string(view_stride) + " is smaller than its element (" +
+                           std::to_string(element) + " bytes): elements would overlap");
+    }
+    if (view_stride != 0) stride = view_stride;
+    src = view_range(file, index, a.bufferView, a.byteOffset,
+                     uint64_t(stride) * (a.count - 1) + element, "data");
+  }
+  std::vector<unsigned char> out(a.count * element, 0);
+  if (src) {
     for (size_t e = 0; e < a.count; ++e) {
       std::memcpy(out.data() + e * element, src + e * stride, element);
     }
@@ -282,6 +296,14 @@ GltfAccessorValues read_gltf_accessor(const GltfFile& file, int index, const Glt
       if (!std::isfinite(v)) {
         throw_gltf_error(file.path, name_of(index),
                          "element " + std::to_string(e) + " is not a finite number");
+      }
+      if (&rule == &gltf_rules::kPosition && std::abs(v) > kMaxCoordinate) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", v);
+        throw_gltf_error(file.path, name_of(index),
+                         "element " + std::to_string(e) + ": POSITION value " + text +
+                             " is too large (more than 1e18 in magnitude: the geometry would "
+                             "overflow)");
       }
       out.values[e * size_t(out.components) + size_t(c)] = v;
     }

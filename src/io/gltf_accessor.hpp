@@ -1,6 +1,7 @@
 #pragma once
 /// Decoding glTF accessors: every component type, normalized integers, byte strides, matrix column
 /// padding and sparse substitution, bounds-checked, with errors that name the accessor.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,15 @@ struct GltfAccessorValues {
   }
 };
 
+/// Largest accessor without bufferView (all zeros plus sparse values) that is decoded: 256 MiB of
+/// elements, about 22 million VEC3 floats.
+inline constexpr uint64_t kGltfMaxViewlessBytes = uint64_t(1) << 28;
+
 /// Elements of accessor `index` as tightly packed bytes (element size as gltf_element_size),
 /// sparse substitution applied; all zero where the accessor has no buffer view. Throws InputError
 /// naming `accessors[index]` for an out-of-range index, bad component type or type, data outside
-/// its buffer view, or bad sparse indices.
+/// its buffer view (checked before anything is allocated by `count`), a byteStride smaller than
+/// the element, or bad sparse indices.
 std::vector<unsigned char> gltf_accessor_bytes(const GltfFile& file, int index);
 
 /// Decodes accessor `index` after checking it against `rule`; `user` names the glTF element that

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "io/atomic_file.hpp"
+#include "io/gltf_resource.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -82,18 +83,28 @@ GlbLayout check_glb(const fs::path& file, const std::string& bytes) {
   return layout;
 }
 
-std::string decode_uri(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
-        std::isxdigit(uint8_t(uri[i + 2]))) {
-      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
+/// Refuses JSON text that nests deeper than kGltfMaxJsonDepth, before any parser recurses into it
+/// (tinygltf copies `extras` recursively: 20,000 nested arrays overflow the stack).
+void check_json_depth(const fs::path& file, const char* text, size_t size) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < size; ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kGltfMaxJsonDepth) {
+        throw_gltf_error(file, "JSON",
+                         "nests deeper than " + std::to_string(kGltfMaxJsonDepth) +
+                             " levels (at byte " + std::to_string(i) + ")");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
     }
   }
-  return out;
 }
 
 bool is_data_uri(const std::string& uri) {
@@ -107,10 +118,15 @@ const json& array_member(const json& doc, const char* key) {
 }
 
 /// Checks what tinygltf would otherwise report vaguely or read out of bounds: buffer and image
-/// files that do not exist, a GLB buffer without BIN chunk, image buffer views outside their
-/// buffer.
-void check_resources(const fs::path& file, const json& doc, bool is_glb, bool has_bin) {
-  const fs::path dir = file.parent_path();
+/// files that are missing or outside the model's folder (io/gltf_resource.hpp), a GLB buffer
+/// without BIN chunk, image buffer views outside their buffer. Allows `resources` to read the
+/// files and lists them, buffers first, in `files`.
+void check_resources(const fs::path& file, const json& doc, bool is_glb, bool has_bin,
+                     GltfResourceFiles& resources, std::vector<fs::path>& files) {
+  const auto external = [&](const std::string& element, const std::string& uri, const char* what) {
+    files.push_back(resolve_gltf_resource(file, element, uri, what));
+    resources.add(uri, files.back());
+  };
   const json& buffers = array_member(doc, "buffers");
   for (size_t i = 0; i < buffers.size(); ++i) {
     const std::string element = "buffers[" + std::to_string(i) + "]";
@@ -127,10 +143,7 @@ void check_resources(const fs::path& file, const json& doc, bool is_glb, bool ha
     }
     if (!uri->is_string()) throw_gltf_error(file, element, "uri is not a string");
     const std::string u = uri->get<std::string>();
-    if (!is_data_uri(u) && !fs::is_regular_file(dir / decode_uri(u))) {
-      throw_gltf_error(file, element,
-                       "buffer file '" + (dir / decode_uri(u)).string() + "' not found");
-    }
+    if (!is_data_uri(u)) external(element, u, "buffer");
   }
   const json& views = array_member(doc, "bufferViews");
   const json& images = array_member(doc, "images");
@@ -141,10 +154,7 @@ void check_resources(const fs::path& file, const json& doc, bool is_glb, bool ha
     const auto uri = image.find("uri");
     if (uri != image.end() && uri->is_string()) {
       const std::string u = uri->get<std::string>();
-      if (!is_data_uri(u) && !fs::is_regular_file(dir / decode_uri(u))) {
-        throw_gltf_error(file, element,
-                         "image file '" + (dir / decode_uri(u)).string() + "' not found");
-      }
+      if (!is_data_uri(u)) external(element, u, "image");
       continue;
     }
     const auto view = image.find("bufferView");
@@ -215,23 +225,26 @@ GltfFile load_gltf_file(const fs::path& path) {
   if (is_glb) layout = check_glb(path, bytes);
   const char* json_text = is_glb ? bytes.data() + layout.json_offset : bytes.data();
   const size_t json_size = is_glb ? layout.json_size : bytes.size();
+  check_json_depth(path, json_text, json_size);
   try {
     out.json = json::parse(json_text, json_text + json_size);
   } catch (const json::exception& e) {
     throw_gltf_error(path, "JSON", std::string("not valid JSON: ") + e.what());
   }
   if (!out.json.is_object()) throw_gltf_error(path, "JSON", "the document is not an object");
+  const std::string base_dir = path.has_parent_path() ? path.parent_path().string() : ".";
+  GltfResourceFiles resources(base_dir);
   try {
     check_extensions(path, out.json);
-    check_resources(path, out.json, is_glb, layout.has_bin);
+    check_resources(path, out.json, is_glb, layout.has_bin, resources, out.resources);
   } catch (const json::exception& e) {  // a member of the wrong JSON type
     throw_gltf_error(path, "JSON", std::string("unexpected value: ") + e.what());
   }
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&keep_encoded_image, nullptr);
+  loader.SetFsCallbacks(resources.callbacks());  // reads the checked resources, nothing else
   std::string err, warn;
-  const std::string base_dir = path.has_parent_path() ? path.parent_path().string() : ".";
   const bool ok =
       is_glb ? loader.LoadBinaryFromMemory(&out.model, &err, &warn,
                                            reinterpret_cast<const unsigned char*>(bytes.data()),

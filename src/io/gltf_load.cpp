@@ -10,8 +10,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Largest frame count fps sampling may produce (a guard against a mistyped rate).
-constexpr double kMaxFrames = 1e7;
+/// Most frames a glTF sequence may have, sampled by fps or one per keyframe time: planning holds
+/// about 1.3 KB per frame, so this bounds it near 130 MB (about 28 minutes at 60 fps).
+constexpr int kGltfMaxFrames = 100000;
 
 /// Index of the element chosen by `index`, else called `key` in `names`: an exact name first,
 /// else a decimal index.
@@ -76,9 +77,9 @@ std::vector<double> frame_times(const GltfInputOptions& options, const GltfRig& 
   check_ranges(options, "input");  // fps in its table's range
   const double fps = *options.fps;
   const double span = keys.back() - keys.front();
-  if (span * fps + 1 > kMaxFrames) {
+  if (span * fps + 1 > kGltfMaxFrames) {
     throw ConfigError("input.fps: " + std::to_string(fps) + " frames per second over " +
-                      std::to_string(span) + " s exceed " + std::to_string(int(kMaxFrames)) +
+                      std::to_string(span) + " s exceed " + std::to_string(kGltfMaxFrames) +
                       " frames");
   }
   const int count = int(std::floor(span * fps + 1e-9)) + 1;
@@ -154,6 +155,12 @@ GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
   s.unreferenced_vertices = weld.unreferenced;
   s.dropped_triangles = weld.dropped_triangles;
 
+  if (!options.fps && scene->rig.keyframe_times.size() > size_t(kGltfMaxFrames)) {
+    throw_gltf_error(file.path, "animations[" + std::to_string(s.animation) + "]",
+                     std::to_string(scene->rig.keyframe_times.size()) +
+                         " distinct keyframe times exceed " + std::to_string(kGltfMaxFrames) +
+                         " frames (set input.fps to sample fewer)");
+  }
   s.times = frame_times(options, scene->rig);
   for (size_t k = 1; k < s.times.size(); ++k) {
     if (!(float(s.times[k]) > float(s.times[k - 1]))) {

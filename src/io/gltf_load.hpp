@@ -51,7 +51,7 @@ inline const Fields<GltfInputOptions>& fields_of<GltfInputOptions>() {
       field<&O::fps>("fps", left_open(0, 1e6),
                      "frames at `t0 + k/fps` (t0 the first keyframe time) up to the last keyframe "
                      "time; `null`: one frame per distinct keyframe time of the animation's "
-                     "samplers; more than 10⁷ frames, or frame times equal as float32, are a "
+                     "samplers; more than 100,000 frames, or frame times equal as float32, are a "
                      "config error; only with `input.gltf`"),
   };
   return fields;

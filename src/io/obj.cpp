@@ -8,6 +8,7 @@
 #include "io/atomic_file.hpp"
 #include "io/obj_lines.hpp"
 #include "io/text_scan.hpp"
+#include "mesh/coordinate_limit.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -34,6 +35,10 @@ class ObjParser {
 
   ObjFile parse() {
     const std::string_view text = file_.text;
+    if (const std::string why = non_text_encoding(text); !why.empty()) {
+      throw InputError(file_.name + ": not a text OBJ file: " + why +
+                       "; OBJ is ASCII or UTF-8 text");
+    }
     size_t pos = 0;
     if (text.substr(0, 3) == "\xEF\xBB\xBF") {  // UTF-8 byte order mark
       add_run(ObjRun::Kind::kText, 0, 3);
@@ -102,8 +107,12 @@ class ObjParser {
       if (token.empty()) {
         fail("v: expected 3 coordinates (x y z), found " + std::to_string(c));
       }
-      positions_.push_back(
-          number(token, "v", [c] { return std::string("coordinate ") + "xyz"[c]; }));
+      const double x = number(token, "v", [c] { return std::string("coordinate ") + "xyz"[c]; });
+      if (std::abs(x) > kMaxCoordinate) {
+        fail(std::string("v: coordinate ") + "xyz"[c] + " '" + std::string(token) +
+             "' is too large (more than 1e18 in magnitude: the geometry would overflow)");
+      }
+      positions_.push_back(x);
     }
     // w or vertex colours: validated here, written back from the text.
     for (int k = 1;; ++k) {

@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/text_scan.hpp"
+#include "mesh/coordinate_limit.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -57,6 +58,11 @@ class OffParser {
         }
         if (!std::isfinite(value)) {
           fail(line_, where() + " '" + std::string(token) + "' is not finite");
+        }
+        if (std::abs(value) > kMaxCoordinate) {
+          fail(line_, where() + " '" + std::string(token) +
+                          "' is too large (more than 1e18 in magnitude: the geometry would "
+                          "overflow)");
         }
         positions.push_back(value);
       }

@@ -2,13 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "io/atomic_file.hpp"
 #include "io/text_scan.hpp"
+#include "mesh/coordinate_limit.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
+
+namespace {
+std::string format_g(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+}  // namespace
 namespace {
 
 enum class PlyType : uint8_t {
@@ -321,6 +331,12 @@ TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* col
             for (int c = 0; c < 3; ++c) {
               if (k == xyz[c]) {
                 if (!std::isfinite(value)) body.fail(e, item, p.name + " is not finite");
+                if (std::abs(value) > kMaxCoordinate) {
+                  body.fail(e, item,
+                            p.name + " " + format_g(value) +
+                                " is too large (more than 1e18 in magnitude: the geometry "
+                                "would overflow)");
+                }
                 xyz_value[c] = value;
               }
               if (vertex_colors && k == vrgb[c]) rgb[c] = to_channel(value, p.type);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/input_file.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -61,17 +62,10 @@ std::string sha256_hex(std::string_view bytes) {
 }
 
 std::string sha256_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw IoError("cannot open '" + path.string() + "': " + std::strerror(errno ? errno : ENOENT));
+  InputFile in(path);  // a FIFO or a device named as an input is refused, not read forever
   Sha256 hash;
   std::vector<char> buffer(1 << 20);
-  while (in) {
-    in.read(buffer.data(), std::streamsize(buffer.size()));
-    hash.update(buffer.data(), size_t(in.gcount()));
-  }
-  if (in.bad())
-    throw IoError("cannot read '" + path.string() + "': " + std::strerror(errno ? errno : EIO));
+  while (const size_t n = in.read(buffer.data(), buffer.size())) hash.update(buffer.data(), n);
   return hash.hex();
 }
 

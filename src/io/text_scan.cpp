@@ -63,4 +63,25 @@ void append_int(std::string& out, int64_t value) {
   out.append(buf, r.ptr);
 }
 
+std::string non_text_encoding(std::string_view bytes) {
+  const std::string_view head = bytes.substr(0, 4096);
+  if (head.substr(0, 4) == std::string_view("\xFF\xFE\0\0", 4))
+    return "it is UTF-32 (little-endian, byte order mark FF FE 00 00)";
+  if (head.substr(0, 4) == std::string_view("\0\0\xFE\xFF", 4))
+    return "it is UTF-32 (big-endian, byte order mark 00 00 FE FF)";
+  if (head.substr(0, 2) == "\xFF\xFE") return "it is UTF-16 (little-endian, byte order mark FF FE)";
+  if (head.substr(0, 2) == "\xFE\xFF") return "it is UTF-16 (big-endian, byte order mark FE FF)";
+  size_t even = 0, odd = 0;
+  for (size_t i = 0; i < head.size(); ++i) {
+    if (head[i] == '\0') ++(i % 2 ? odd : even);
+  }
+  if (even + odd == 0) return "";
+  const size_t half = head.size() / 2;
+  if (odd * 10 >= half * 9 && even * 10 < half)
+    return "it looks like UTF-16 little-endian (every other byte is NUL)";
+  if (even * 10 >= half * 9 && odd * 10 < half)
+    return "it looks like UTF-16 big-endian (every other byte is NUL)";
+  return "it holds NUL bytes (binary data)";
+}
+
 }  // namespace sm

@@ -25,6 +25,11 @@ bool parse_double(std::string_view token, double& value);
 /// is not an integer or does not fit in 64 bits.
 bool parse_int(std::string_view token, int64_t& value);
 
+/// Why `bytes` is not a text file in an ASCII-compatible encoding (UTF-8, Latin-1), judged by the
+/// first 4 KiB: "it is UTF-16 (little-endian, byte order mark FF FE)", "it looks like UTF-16
+/// big-endian (every other byte is NUL)", "it holds NUL bytes (binary data)"; empty if text.
+std::string non_text_encoding(std::string_view bytes);
+
 /// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars), e.g.
 /// "0.1", "-2.5e-07", "1e+20". Independent of the locale, hence byte-deterministic.
 void append_double(std::string& out, double value);

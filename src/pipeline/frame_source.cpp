@@ -8,6 +8,7 @@
 #include "io/gltf_obj.hpp"
 #include "io/gltf_scene.hpp"
 #include "io/sha256.hpp"
+#include "mesh/coordinate_limit.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/synthetic.hpp"
 
@@ -155,15 +156,10 @@ class GltfSource : public FrameSource {
             {"triangles", s.rest.num_triangles()}};
   }
   std::vector<fs::path> files(const std::vector<int>&) const override {
+    // The files the loader read (URIs percent-decoded and checked), so the hash covers them.
     std::vector<fs::path> out = {sequence_.file};
-    const json& doc = sequence_.scene->file.json;
-    for (const char* array : {"buffers", "images"}) {
-      for (const json& item : doc.value(array, json::array())) {
-        const std::string uri = item.is_object() ? item.value("uri", "") : "";
-        if (!uri.empty() && uri.rfind("data:", 0) != 0)
-          out.push_back(sequence_.file.parent_path() / uri);
-      }
-    }
+    const std::vector<fs::path>& resources = sequence_.scene->file.resources;
+    out.insert(out.end(), resources.begin(), resources.end());
     return out;
   }
   TriMesh template_frame(int i) const override { return decode(i, {}).mesh; }
@@ -187,6 +183,14 @@ class GltfSource : public FrameSource {
             " at t = " + short_number(sequence_.times[size_t(i)]) + " s (frame " +
             std::to_string(i) + "): " + element("meshes", sequence_.mesh) +
             " evaluates to a non-finite position at welded vertex " + std::to_string(v));
+      if (f.V.row(v).cwiseAbs().maxCoeff() > kMaxCoordinate)
+        throw InputError(
+            "'" + sequence_.file.string() + "': " + element("animations", sequence_.animation) +
+            " at t = " + short_number(sequence_.times[size_t(i)]) + " s (frame " +
+            std::to_string(i) + "): " + element("meshes", sequence_.mesh) +
+            " evaluates to a position of " + short_number(f.V.row(v).cwiseAbs().maxCoeff()) +
+            " at welded vertex " + std::to_string(v) +
+            ", more than 1e18 in magnitude (the geometry would overflow)");
     }
     SourceFrame frame;
     frame.mesh = TriMesh{f.V, sequence_.rest.F};

@@ -3,13 +3,19 @@
 // and one four times as large (linear: about 4x; quadratic: 16x), and the large files are big
 // enough (tens of MB) that a reader quadratic in its lines would not finish within the ctest
 // timeout. An error on the last line of a huge file is found and named like any other.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <filesystem>
 #include <new>
 #include <string>
 
+#include "io/atomic_file.hpp"
+#include "io/gltf_load.hpp"
 #include "io/obj.hpp"
 #include "io/off.hpp"
 #include "io/ply.hpp"
@@ -70,6 +76,7 @@ void operator delete[](void* p, const std::nothrow_t&) noexcept {
 }
 
 using namespace sm;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -171,4 +178,58 @@ TEST_CASE("OFF and PLY: reading a huge file is linear", "[large]") {
   REQUIRE(off_huge.size() > 20'000'000);
   CHECK(parse_off(off_huge, "huge.off").num_triangles() == 2 * 800 * 800);
   CHECK(parse_ply(format_ply(huge, nullptr, true), "huge.ply").num_vertices() == 801 * 801);
+}
+
+TEST_CASE("OBJ: the memory bound holds for the densest file (bare vertex lines)", "[large]") {
+  // "v 0 0 0\n" is 8 bytes for 24 bytes of doubles: the worst ratio of the format. Everything
+  // allocated while reading (the text, the growing arrays and the mesh) stays within 24x the file.
+  std::string text;
+  for (int i = 0; i < 300000; ++i) text += "v 0 0 0\n";
+  text += "f 1 2 3\n";
+  ObjFile f;
+  const Work w = count([&] { f = parse_obj(text, "dense.obj"); });
+  INFO(w.bytes << " bytes allocated for a " << text.size() << "-byte file");
+  CHECK(w.bytes <= 24 * text.size());
+  CHECK(f.mesh.num_vertices() == 300000);
+}
+
+TEST_CASE("glTF: a 1.6 KB file claiming 4e8 or 2^31-1 elements is refused cheaply", "[large]") {
+  // One triangle (36 bytes of positions, in a data: URI) under a node translated from t = 0 to 1,
+  // whose POSITION count claims far more.
+  const std::string data =
+      "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAA=";
+  const fs::path dir =
+      fs::temp_directory_path() / ("seqmassage-count-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const char* count : {"400000000", "2147483647"}) {
+    std::string doc = R"({"asset": {"version": "2.0"},
+      "buffers": [{"byteLength": 68, "uri": "data:application/octet-stream;base64,)" + data +
+                      R"("}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36,
+                       "byteLength": 8}, {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": )" +
+                      std::string(count) + R"(},
+        {"bufferView": 1, "componentType": 5126, "type": "SCALAR", "count": 2,
+         "min": [0], "max": [1]},
+        {"bufferView": 2, "componentType": 5126, "type": "VEC3", "count": 2}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}],
+      "animations": [{"samplers": [{"input": 1, "output": 2}],
+                      "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}]}]})";
+    doc += std::string(1600 - std::min<size_t>(doc.size(), 1600), ' ');
+    const fs::path file = dir / "count.gltf";
+    write_file_atomic(file, doc);
+    std::string message;
+    const Work w = count([&] {
+      try {
+        load_gltf_sequence({file, "", "", std::nullopt});
+      } catch (const InputError& e) {
+        message = e.what();
+      }
+    });
+    INFO(count << ": " << w.bytes << " bytes allocated");
+    CHECK_THAT(message, Catch::Contains("accessors[0]: data needs bytes 0.."));
+    CHECK(w.bytes < 1'000'000);
+  }
+  fs::remove_all(dir);
 }
