@@ -1,5 +1,6 @@
 #include "pipeline/output_frames.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "io/atomic_file.hpp"

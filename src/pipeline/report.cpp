@@ -8,6 +8,7 @@
 #include "io/csv.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/frame_output.hpp"
+#include "pipeline/frame_processor.hpp"
 #include "pipeline/report_json.hpp"
 #include "pipeline/shard.hpp"
 
@@ -103,7 +104,7 @@ ReportHeader report_header(const SequencePlan& plan) {
   h.templ = {{"source", plan.template_source},
              {"vertices", plan.templ.num_vertices()},
              {"triangles", plan.templ.num_triangles()},
-             {"weight_fallback_vertices", plan.massager->weights().fallback_vertices},
+             {"weight_fallback_vertices", plan.processor->massager().weights().fallback_vertices},
              {"hash", plan.template_hash}};
   // "distortion" is null when that output is off (report.json has always listed it).
   h.outputs = {{"dir", c.output.dir.string()},

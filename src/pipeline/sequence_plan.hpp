@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "geometry/distance_meter.hpp"
-#include "massage/massage.hpp"
 #include "mesh/mesh.hpp"
 #include "pipeline/frame_source.hpp"
 #include "pipeline/sequence_options.hpp"
@@ -15,6 +13,7 @@
 namespace sm {
 
 class FrameOutput;
+class FrameProcessor;
 
 struct SequencePlan {
   SequenceJobOptions config;
@@ -27,9 +26,9 @@ struct SequencePlan {
   int template_frame = -1;      ///< index of the template frame, -1 for a mesh
   std::string template_source;  ///< e.g. "frame 0 (frame_0000.obj)"
   TriMesh templ;                ///< the original template: weights and shear
-  std::shared_ptr<const Massager> massager;  ///< built once from the template
-  /// The distances between each frame and its output (sampling layout and scratch, built once).
-  std::shared_ptr<const DistanceMeter> distance_meter;
+  /// Every frame's stages (optimize, check, measure, encode): the template's Massager, the
+  /// distance meter and the checks, built once.
+  std::shared_ptr<const FrameProcessor> processor;
   int threads = 1;            ///< resolved worker threads
   int frames_in_flight = 2;   ///< resolved pipeline tokens
   std::string config_hash;    ///< frame_config_hash(config), kept in every frame record
