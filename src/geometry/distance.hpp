@@ -29,8 +29,9 @@ struct DistanceOptions {
   /// samples.
   bool adaptive = false;
   /// In [0, 1]: with `adaptive`, the fraction of the largest sample that a triangle's samples
-  /// must reach for it to be refined (0: every triangle with a nonzero distance). 0.4 finds the
-  /// finest uniform sampling's maximum on the crane, samba and horse (README, "Performance").
+  /// must reach for it to be refined (0: every triangle with a nonzero distance). The default is
+  /// the largest value that still finds the finest uniform sampling's maximum on captured
+  /// sequences (bench_sequence measures it).
   double refine_above = 0.4;
   /// A's triangle t and B's triangle t are the same triangle moved (a frame and its corrected
   /// output share their connectivity): the first sample of A's triangle t tries B's triangle t
