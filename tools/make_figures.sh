@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's figures (tools/figures/*.png) from the demo run: runs tools/demo.sh
+# Regenerates the documentation's figures (tools/figures/*.png) from the demo run: runs tools/demo.sh
 # (build, then configs/demo.json into out/demo), then plot_distortion.py (Figures 5, 7, 8 of the
 # paper) and render_mesh.py (Figures 4 and 6) on frame 23, the demo's most bent frame.
 #   bash tools/make_figures.sh             run the demo, then draw

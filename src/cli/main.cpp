@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli/arguments.hpp"
+#include "cli/help.hpp"
 #include "config/config.hpp"
 #include "config/reference.hpp"
 #include "mesh/errors.hpp"
@@ -42,111 +43,6 @@ enum ExitCode : int {
   kInterrupted = 130,  // 128 + SIGINT
   kTerminated = 143,   // 128 + SIGTERM
 };
-
-// The help of each command: its description (usage, what it does) and footer (outputs, exit
-// status); the options between them are listed from the option definitions below.
-constexpr const char* kHelp = R"(Usage: seqmassage [options] CONFIG.json
-       seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
-       seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
-       seqmassage config --reference
-
-Commands:
-  (none)   run the job of CONFIG.json
-  measure  print the paper's measures of a mesh against a reference mesh
-  merge    combine the shards of a sequence job (--shard I/N) into the outputs of one run
-  config   --reference: print every config key, its type, default and meaning (Markdown)
-
-Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
-by its "job" key:
-  sequence    corrects texture swimming in a captured mesh sequence (Mesh Massage, section 3.1):
-              every frame takes the template frame's triangle shapes and stays on its surface
-  remesh      brings a remesh closer to its source surface (section 3.3)
-  crossparam  copies the triangle shapes of a source mesh onto a target mesh with the same
-              connectivity (section 3.2)
-  smooth      evens out the triangles while keeping the surface and its sharp features (section 4)
-)";
-
-constexpr const char* kHelpFooter = R"(Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
-with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
-
-Outputs of a sequence, under "output.dir":
-  frames/<input name>.obj     the corrected frames ("format": "obj", the default)
-  positions/<frame>.bin, sequence.glb
-                              with "format": "gltf" (glTF input): each frame's corrected
-                              positions, and the corrected animation as one GLB, a morph
-                              target per frame (a shard writes positions/ only)
-  distortion/<frame>.csv      shear per triangle before and after ("per_triangle_csv")
-  colored/{before,after}/<frame>.ply
-                              the shear (eq. 8) as colours, blue to red ("colored")
-  checker/{before,after}/<frame>.obj, checker.mtl, checker.png
-                              a checkerboard texture on the template's UVs ("checker")
-  iterations.csv              the optimizer's figures, iteration by iteration ("iterations")
-  records/<frame>.json        what made each frame, its summary row, its outputs' SHA-256
-  summary.csv, report.json    one row per frame; config, totals, warnings, failures
-A shard (--shard I/N) names its own summary.shard-I-of-N.csv, report.shard-I-of-N.json and
-iterations.shard-I-of-N.csv; 'seqmassage merge' writes summary.csv, report.json,
-iterations.csv and sequence.glb from them.
-Outputs of the other jobs: <input file name> (in "output.format"), measures.csv (before and
-after), report.json and, with "per_triangle_csv", triangles.csv.
---frames, --resume and --shard apply to sequences only. Every file is written to a temporary
-name and renamed when complete, so a killed run leaves complete files only.
-
-Exit status:
-  0    every frame (or the mesh) was processed
-  1    internal error (a bug; please report it)
-  2    usage or config error: bad option, missing config file, invalid JSON, unknown key,
-       wrong type or out-of-range value, an output folder that would overwrite an input
-  3    input error: a malformed frame, template or glTF file (the message names the glTF
-       element), frames with different vertex counts or faces; for merge, missing,
-       incomplete or inconsistent shards (named, with the frames concerned)
-  4    I/O error: a file or folder cannot be read or written
-  5    processing error: some frames failed (the optimizer failed, non-finite positions, or
-       more folded triangles than "checks" allow; reason in summary.csv and on stderr); they
-       are written unchanged (or not at all: "output": {"on_failure": "skip"}) and the other
-       frames are complete. For a single-mesh job, the optimizer failed: no mesh is written,
-       report.json holds the reason
-  130  interrupted (Ctrl-C, SIGINT): the frames in flight were finished; the frames done are
-       written and listed in summary.csv; --resume continues
-  143  terminated (SIGTERM, as schedulers send): the same as 130
-A second SIGINT or SIGTERM ends the program at once; like SIGKILL, it leaves complete files
-only, and --resume continues.
-)";
-
-constexpr const char* kMergeHelp = R"(Usage: seqmassage merge [options] OUTPUT_DIR
-
-Combines the shards of a sequence job run with --shard I/N (every shard writing into OUTPUT_DIR)
-into the outputs of one run: summary.csv and report.json, byte for byte what a single unsharded
-run of the same config writes (with "output": {"timings": false}; with timings on, the seconds
-differ), and for "format": "gltf" sequence.glb, assembled from every shard's positions/ files
-(this reads the glTF input again). It checks first that all N shard reports
-(report.shard-I-of-N.json) are there and complete, that every shard ran the same job (the same
-config apart from "threads" and "frames_in_flight", template and program: their hashes), and
-that every selected frame is in exactly one shard, with its record and outputs. The shard files
-are left in place.
-)";
-
-constexpr const char* kMergeHelpFooter = R"(Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
-the command that redoes them), nothing written; 4 I/O error; 5 merged, but some frames failed
-(as for a run).
-)";
-
-constexpr const char* kMeasureHelp = R"(Usage: seqmassage measure [options] MESH REFERENCE
-
-Prints the paper's measures of MESH against REFERENCE (any two .obj, .off or .ply meshes), the
-same report as the remesh, crossparam and smooth jobs write:
-  - Metro-style one-sided distances MESH -> REFERENCE and REFERENCE -> MESH (max, mean, RMS,
-    absolute and relative to the bounding-box diagonal of both), sampled on vertices, edges and
-    inside triangles, and the symmetric Hausdorff distance;
-  - the radius ratio 2r/R of both meshes' triangles (min, mean; 1 = equilateral);
-  - the shear distortion (eq. 8) of MESH against the --template, or against REFERENCE when it has
-    MESH's connectivity (max, mean, p95, histogram);
-  - REFERENCE's sharp edges: their distance to MESH, and with the same connectivity the change of
-    their dihedral angles.
-)";
-
-constexpr const char* kMeasureHelpFooter = R"(Exit status: 0 success, 2 usage error, 3 input error (malformed mesh, template of another
-connectivity), 4 I/O error.
-)";
 
 using sm::cli::UsageError;
 
@@ -178,9 +74,9 @@ struct Args {
 
 Args parse_args(int argc, char** argv) {
   Args out;
-  CLI::App app(kHelp, "seqmassage");
+  CLI::App app(sm::cli::kHelp, "seqmassage");
   sm::cli::set_conventions(app, 24);
-  app.footer(kHelpFooter);
+  app.footer(sm::cli::run_help_footer());
   app.set_version_flag("--version", version_text, "print the version and exit");
   int threads = 0;
   std::string frames, shard;
@@ -331,7 +227,7 @@ int run(const Args& args) {
   if (!args.quiet) {
     if (plan.config.resume) std::cerr << "seqmassage: " << sm::resume_text(result) << "\n";
     std::cerr << "seqmassage: " << sm::run_end_text(result) << "\n";
-    print_results(out, sm::run_output_names(plan, result));
+    print_results(out, sm::run_output_names(plan));
     if (plan.config.shard.sharded() && !result.interrupted)
       std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }
@@ -390,9 +286,9 @@ int run_mesh_job(const Args& args, sm::MeshJobOptions config) {
 // "seqmassage measure ..." (argv[0] is "measure").
 sm::MeasureFilesRequest parse_measure_args(int argc, char** argv) {
   sm::MeasureFilesRequest out;
-  CLI::App app(kMeasureHelp, "seqmassage measure");
+  CLI::App app(sm::cli::kMeasureHelp, "seqmassage measure");
   sm::cli::set_conventions(app, 26);
-  app.footer(kMeasureHelpFooter);
+  app.footer(sm::cli::kMeasureHelpFooter);
   const CLI::Validator file_name(
       [](std::string& v) { return v.empty() ? "expected a file name, got \"\"" : ""; }, "");
   std::string templ, csv, json;
@@ -432,9 +328,9 @@ sm::MeasureFilesRequest parse_measure_args(int argc, char** argv) {
 int run_merge_command(int argc, char** argv) {
   bool quiet = false;
   std::vector<std::string> positional;
-  CLI::App app(kMergeHelp, "seqmassage merge");
+  CLI::App app(sm::cli::kMergeHelp, "seqmassage merge");
   sm::cli::set_conventions(app, 16);
-  app.footer(kMergeHelpFooter);
+  app.footer(sm::cli::kMergeHelpFooter);
   app.add_flag("-q,--quiet", quiet, "print nothing but errors");
   app.add_option("OUTPUT_DIR", positional);
   sm::cli::parse(app, argc, argv);
@@ -493,9 +389,9 @@ int guarded(Body&& body, const std::string& config_name) {
 int main(int argc, char** argv) {
   // Every frame allocates and frees the same few large arrays (positions, grids, systems). With
   // glibc's defaults each of them is a fresh mmap whose pages fault in again, and the heap is
-  // trimmed after every free: about 5% of the crane job's CPU time went to the kernel. Keeping
-  // them on the heap (blocks up to glibc's 32 MB cap) and the freed memory for reuse removes it;
-  // peak memory is unchanged (bench_sequence's 50 vs 1000 frames shows that it stays flat).
+  // trimmed after every free, so a long sequence spends a share of its CPU time in the kernel.
+  // Keeping them on the heap (blocks up to glibc's 32 MB cap) and the freed memory for reuse
+  // removes it without raising peak memory (docs/performance.md has the figures).
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
   const std::string command = argc > 1 ? argv[1] : "";

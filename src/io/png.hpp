@@ -1,6 +1,7 @@
 #pragma once
 /// PNG images of 8-bit grey, RGB or RGBA pixels, encoded by stb_image_write: deflate-compressed
-/// scanlines, each with the PNG filter that suits it best (a 256×256 checkerboard takes about 2 KB).
+/// scanlines, each with the PNG filter that suits it best (flat areas such as a checkerboard's
+/// squares compress to almost nothing).
 /// The bytes depend on the pixels only (stb's compression level and filter choice are left at their
 /// defaults), so a texture is the same in every run and with any number of threads.
 #include <cstdint>

@@ -182,8 +182,8 @@ bool MassageRun::solve(IterationStats& it, bool use_direct, int k) {
   const auto t0 = Clock::now();
   const int n = s_.pattern.size();
   // Warm start: the positions extrapolated along the last step, 2 v_k − v_{k−1} (the iterates
-  // move smoothly; 2.0 -> 1.2 BiCGSTAB iterations at 10k, 3.0 -> 2.7 on the crane), the current
-  // positions in the first iteration.
+  // move smoothly, so the extrapolation is closer to the solution than v_k and BiCGSTAB needs
+  // fewer iterations), the current positions in the first iteration.
   if (k > 1) {
     X_.resize(n, 3);
     for (Eigen::Index p = 0; p < X_.size(); ++p)

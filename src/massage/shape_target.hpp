@@ -16,8 +16,8 @@
 /// perturbs mainly the twist, which turns only the tangential part of (A T)_i, small already (it
 /// vanishes on planar rings); the normal part, |(A T)_i · n|, is T's and does not depend on the
 /// drift. Estimating R_i from the iterates, taking the normal part from S, or turning each
-/// triangle by its own rotation would all let the target follow the drift. The README ("Method,
-/// and where we decided") compares δ = 0 with this target on the shared sequences.
+/// triangle by its own rotation would all let the target follow the drift; δ = 0 (the smooth
+/// job's target) would pull every vertex to its neighbours' weighted mean and flatten detail.
 ///
 /// Consistency: on a closed class C of Λ (rows that reference only C: a boundary loop with curve
 /// weights, a small component), A's block is singular with left null vector π (πᵀ Λ_CC = πᵀ), so

@@ -5,12 +5,11 @@
 #include <set>
 
 #include "io/atomic_file.hpp"
-#include "io/csv.hpp"
+#include "io/gltf_load.hpp"
 #include "io/options_json.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/frame_record.hpp"
-#include "pipeline/frame_sink.hpp"
-#include "pipeline/iteration_log.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
 
@@ -138,33 +137,36 @@ std::vector<ShardReport> find_shard_reports(const fs::path& dir) {
   return found;
 }
 
-}  // namespace
+// What merge works from, found and read by find_shards.
+struct Shards {
+  fs::path dir;
+  std::vector<ShardReport> reports;  // by split, then index
+  int count = 0;                     // N
+  ReportHeader header;               // the first shard's
+  SequenceJobOptions config;         // as the shards' reports resolved it
+  std::map<int, std::string> names;  // every frame's name that is known
+};
 
-MergeResult merge_shards(const fs::path& output_dir) {
-  const fs::path dir = fs::absolute(output_dir).lexically_normal();
-  std::vector<ShardReport> shards = find_shard_reports(dir);
-  const int N = shards.front().shard.count;
-  const ShardReport& ref = shards.front();
-  const ReportHeader header = report_header_from_json(ref.report);
-  SequenceJobOptions config;  // as the shards' reports resolved it (their configs were checked)
-  read_options(header.config, config, dir);
+Shards find_shards(const fs::path& output_dir) {
+  Shards s;
+  s.dir = fs::absolute(output_dir).lexically_normal();
+  s.reports = find_shard_reports(s.dir);
+  s.count = s.reports.front().shard.count;
+  s.header = report_header_from_json(s.reports.front().report);
+  read_options(s.header.config, s.config, s.dir);
+  for (const ShardReport& r : s.reports)
+    for (const auto& [index, name] : r.frames) s.names[index] = name;
+  return s;
+}
+
+// Throws InputError when a shard ran another build, config, template or input than the first.
+void verify_same_job(const Shards& s) {
+  const ShardReport& ref = s.reports.front();
   std::vector<std::string> problems;
-
-  // Names of every frame, for the messages (from the shards, else from the input if it can be
-  // listed; indices alone otherwise).
-  std::map<int, std::string> names;
-  for (const ShardReport& s : shards)
-    for (const auto& [index, name] : s.frames) names[index] = name;
-  std::shared_ptr<const FrameSource> source;
-  const auto input_source = [&]() -> const FrameSource* {
-    if (!source) source = make_frame_source(config);
-    return source.get();
-  };
-
-  // The same job in every shard.
-  for (const ShardReport& s : shards) {
-    if (&s == &ref) continue;
-    const ReportHeader h = report_header_from_json(s.report);
+  for (const ShardReport& r : s.reports) {
+    if (&r == &ref) continue;
+    const ReportHeader h = report_header_from_json(r.report);
+    const ReportHeader& header = s.header;
     std::string diff;
     if (h.versions != header.versions)
       diff = "another seqmassage build: " + first_difference(header.versions, h.versions);
@@ -175,138 +177,174 @@ MergeResult merge_shards(const fs::path& output_dir) {
       diff = "another template (its hash differs)";
     else if (h.input != header.input || h.frames_listed != header.frames_listed)
       diff = "another input: " + first_difference(header.input, h.input);
-    if (!diff.empty()) problems.push_back(s.file + " ran " + diff + " than " + ref.file);
+    if (!diff.empty()) problems.push_back(r.file + " ran " + diff + " than " + ref.file);
   }
-  if (!problems.empty()) {
-    std::string text = "'" + dir.string() + "': the shards are not of one job:";
-    for (const std::string& p : problems) text += "\n  " + p;
-    throw InputError(text + "\nrun the odd shards again with the config of the others");
-  }
+  if (problems.empty()) return;
+  std::string text = "'" + s.dir.string() + "': the shards are not of one job:";
+  for (const std::string& p : problems) text += "\n  " + p;
+  throw InputError(text + "\nrun the odd shards again with the config of the others");
+}
 
-  // Every shard, complete, with its block of the selection; every frame once.
-  const std::vector<int> selected = select_frames(config.input.range, header.frames_listed);
+// Every shard there, complete, with its block of the selection; every frame once. Returns the
+// shard file of every frame; adds what is wrong to `problems` (and names from the input, when
+// a shard is missing and the input can be listed).
+std::map<int, std::string> verify_blocks(Shards& s, const std::vector<int>& selected,
+                                         std::vector<std::string>& problems) {
   std::map<int, const ShardReport*> by_index;
-  for (const ShardReport& s : shards) by_index[s.shard.index] = &s;
+  for (const ShardReport& r : s.reports) by_index[r.shard.index] = &r;
   std::map<int, std::string> owner;  // frame -> shard file
-  for (int i = 0; i < N; ++i) {
-    const ShardOptions shard{i, N};
+  for (int i = 0; i < s.count; ++i) {
+    const ShardOptions shard{i, s.count};
     const std::vector<int> block = shard_frames(selected, shard);
     const auto it = by_index.find(i);
     const std::string rerun = "seqmassage --shard " + format_shard(shard) + " --resume CONFIG";
     if (it == by_index.end()) {
-      if (names.size() < selected.size()) {
+      if (s.names.size() < selected.size()) {
         try {
-          for (int f : block) names[f] = input_source()->name(f);
+          const std::shared_ptr<const FrameSource> source = make_frame_source(s.config);
+          for (int f : block) s.names[f] = source->name(f);
         } catch (const Error&) {  // the input is not reachable: indices only
         }
       }
       problems.push_back(
           shard_label(shard) + ": no " + report_file_name(shard) +
-          (block.empty() ? " (it has no frames)" : "; missing " + describe_frames(block, names)) +
+          (block.empty() ? " (it has no frames)" : "; missing " + describe_frames(block, s.names)) +
           "; run it: " + rerun);
       continue;
     }
-    const ShardReport& s = *it->second;
+    const ShardReport& r = *it->second;
     std::vector<int> listed;
-    for (const auto& [index, name] : s.frames) listed.push_back(index);
+    for (const auto& [index, name] : r.frames) listed.push_back(index);
     if (listed != block) {
-      problems.push_back(s.file + ": its frames (" + describe_frames(listed, names) + ") are not " +
-                         shard_label(shard) + " of the selection (" +
-                         describe_frames(block, names) + ")");
+      problems.push_back(r.file + ": its frames (" + describe_frames(listed, s.names) +
+                         ") are not " + shard_label(shard) + " of the selection (" +
+                         describe_frames(block, s.names) + ")");
       continue;
     }
     for (int f : listed) {
-      const auto [at, fresh] = owner.emplace(f, s.file);
+      const auto [at, fresh] = owner.emplace(f, r.file);
       if (!fresh)
         problems.push_back("frame " + std::to_string(f) + " is in " + at->second + " and " +
-                           s.file);
+                           r.file);
     }
-    if (!s.report.at("shard").value("complete", false))  // its missing frames are listed below
-      problems.push_back(s.file + ": " + shard_label(shard) +
+    if (!r.report.at("shard").value("complete", false))  // its missing frames are listed below
+      problems.push_back(r.file + ": " + shard_label(shard) +
                          " was interrupted before its last frame; run it again: " + rerun);
   }
+  return owner;
+}
 
-  // Every frame's record, of this job, with its outputs.
-  MergeResult result;
-  result.shards = N;
-  std::string iteration_rows;  // the records' iterations.csv rows, in frame order
+// Why frame `f`'s record cannot be merged, or "" (then `record` holds it).
+std::string record_problem(const Shards& s, int f, const std::string& name,
+                           std::optional<FrameRecord>& record) {
+  std::string problem;
+  record = read_frame_record(record_file(s.dir, name), &problem);
+  if (!record) return problem;
+  if (record->config_hash != s.header.config_hash) return "its record is of another config";
+  if (record->template_hash != s.header.templ.value("hash", ""))
+    return "its record is of another template";
+  if (record->summary.frame != f || record->summary.file != name)
+    return "its record is another frame's";
+  return check_recorded_outputs(*record, s.dir, false);
+}
+
+// Every selected frame's record, of this job, with its outputs: their rows into `result`, their
+// record rows into `rows`; what is wrong into `problems`.
+void verify_records(const Shards& s, const std::vector<int>& selected,
+                    std::map<int, std::string>& owner, MergeResult& result, std::string& rows,
+                    std::vector<std::string>& problems) {
   std::vector<int> bad_frames;
   std::string first_bad;
   for (int f : selected) {
-    const auto name = names.find(f);
-    if (name == names.end()) continue;  // in a missing shard, reported above
-    std::string problem;
-    const std::optional<FrameRecord> r =
-        read_frame_record(record_file(dir, name->second), &problem);
-    if (r) {
-      if (r->config_hash != header.config_hash)
-        problem = "its record is of another config";
-      else if (r->template_hash != header.templ.value("hash", ""))
-        problem = "its record is of another template";
-      else if (r->summary.frame != f || r->summary.file != name->second)
-        problem = "its record is another frame's";
-      else
-        problem = check_recorded_outputs(*r, dir, false);
-    }
-    if (!problem.empty()) {
+    const auto name = s.names.find(f);
+    if (name == s.names.end()) continue;  // in a missing shard, reported already
+    std::optional<FrameRecord> r;
+    if (std::string problem = record_problem(s, f, name->second, r); !problem.empty()) {
       bad_frames.push_back(f);
       if (first_bad.empty())
         first_bad = frame_label(f, name->second, std::nullopt) + ": " + problem;
       continue;
     }
     result.frames.push_back(r->summary);
-    iteration_rows += r->iterations_csv;
+    rows += r->iterations_csv;
   }
-  if (!bad_frames.empty()) {
-    std::set<std::string> files;
-    for (int f : bad_frames) files.insert(owner.count(f) ? owner[f] : "?");
-    std::string rerun;
-    for (const std::string& file : files) rerun += (rerun.empty() ? "" : ", ") + file;
-    problems.push_back("missing or incomplete frames: " + describe_frames(bad_frames, names) +
-                       " (first: " + first_bad + "); run their shards again with --resume (" +
-                       rerun + ")");
-  }
-  if (!problems.empty()) {
-    std::string text = "'" + dir.string() + "': cannot merge " + std::to_string(N) + " shards:";
-    for (const std::string& p : problems) text += "\n  " + p;
-    throw InputError(text);
-  }
+  if (bad_frames.empty()) return;
+  std::set<std::string> files;
+  for (int f : bad_frames) files.insert(owner.count(f) ? owner[f] : "?");
+  std::string rerun;
+  for (const std::string& file : files) rerun += (rerun.empty() ? "" : ", ") + file;
+  problems.push_back("missing or incomplete frames: " + describe_frames(bad_frames, s.names) +
+                     " (first: " + first_bad + "); run their shards again with --resume (" +
+                     rerun + ")");
+}
 
-  // The whole run's outputs.
-  result.warnings = header.warnings;
+// The whole run's outputs: every output's finish over the merged frames, summary.csv and
+// report.json.
+void assemble(const Shards& s, const std::string& rows, MergeResult& result) {
+  const SequenceJobOptions& config = s.config;
+  result.warnings = s.header.warnings;
   for (const FrameSummary& f : result.frames) {
     append_frame_warnings(f, config.output.on_failure, result.warnings);
     result.failed += f.status == FrameStatus::Failed;
   }
-  for (const char* sub : {".", "frames", "distortion", "positions", "records"})
-    remove_stale_temporaries(dir / sub);
-  if (config.output.format == OutputFormat::Gltf) {
-    std::vector<int> with_output;
-    for (const FrameSummary& f : result.frames)
-      if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip))
-        with_output.push_back(f.frame);
-    SequenceJobOptions whole = config;
-    whole.output.dir = dir;
-    for (std::string& w : assemble_sequence_glb(whole, *input_source(), with_output))
-      result.warnings.push_back(std::move(w));
-    result.written.push_back("sequence.glb");
-  }
-  if (config.output.iterations.enabled) {
-    write_file_atomic(dir / "iterations.csv",
-                      CsvWriter(iteration_columns()).str() + iteration_rows);
-    result.written.push_back("iterations.csv");
+  SequenceJobOptions whole = config;  // the shards' config: "shard" is the whole run's
+  whole.output.dir = s.dir;
+  const auto gltf = [&]() -> std::shared_ptr<const GltfSequence> {
+    if (!whole.input.gltf) return nullptr;
+    return std::make_shared<const GltfSequence>(load_gltf_sequence(*whole.input.gltf));
+  };
+  const std::vector<std::shared_ptr<FrameOutput>> outputs =
+      make_frame_outputs({whole, nullptr, gltf});
+  for (const char* sub : {".", "records"}) remove_stale_temporaries(s.dir / sub);
+  for (const auto& output : outputs)
+    for (const fs::path& folder : output->folders()) remove_stale_temporaries(folder);
+  FinishedFrames done;
+  done.record_rows = rows;
+  for (const FrameSummary& f : result.frames)
+    if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip)) {
+      done.frames.push_back(f.frame);
+      done.names.push_back(f.file);
+    }
+  for (const auto& output : outputs) {
+    OutputFinish finished = output->finish(done);
+    for (std::string& w : finished.warnings) result.warnings.push_back(std::move(w));
+    for (std::string& file : finished.written) result.written.push_back(std::move(file));
   }
   json run;
   if (config.output.timings) {
     json seconds = json::array();
-    for (const ShardReport& s : shards)
-      seconds.push_back(s.report.contains("run") ? s.report["run"].value("seconds", 0.0) : 0.0);
-    run = {{"merged_shards", N}, {"shard_seconds", seconds}};
+    for (const ShardReport& r : s.reports)
+      seconds.push_back(r.report.contains("run") ? r.report["run"].value("seconds", 0.0) : 0.0);
+    run = {{"merged_shards", s.count}, {"shard_seconds", seconds}};
   }
-  write_file_atomic(dir / "summary.csv", format_summary_csv(result.frames, config.output.timings));
-  write_file_atomic(dir / "report.json",
-                    make_report(header, result.frames, result.warnings, false, run).dump(2) + "\n");
+  write_file_atomic(s.dir / "summary.csv",
+                    format_summary_csv(result.frames, config.output.timings));
+  write_file_atomic(
+      s.dir / "report.json",
+      make_report(s.header, result.frames, result.warnings, false, run).dump(2) + "\n");
   result.written.insert(result.written.begin(), {"summary.csv", "report.json"});
+}
+
+}  // namespace
+
+MergeResult merge_shards(const fs::path& output_dir) {
+  Shards shards = find_shards(output_dir);
+  verify_same_job(shards);
+  const std::vector<int> selected =
+      select_frames(shards.config.input.range, shards.header.frames_listed);
+  std::vector<std::string> problems;
+  std::map<int, std::string> owner = verify_blocks(shards, selected, problems);
+  MergeResult result;
+  result.shards = shards.count;
+  std::string rows;  // the records' iterations.csv rows, in frame order
+  verify_records(shards, selected, owner, result, rows, problems);
+  if (!problems.empty()) {
+    std::string text = "'" + shards.dir.string() + "': cannot merge " +
+                       std::to_string(shards.count) + " shards:";
+    for (const std::string& p : problems) text += "\n  " + p;
+    throw InputError(text);
+  }
+  assemble(shards, rows, result);
   return result;
 }
 

@@ -1,32 +1,18 @@
 #include "pipeline/sequence_job.hpp"
 
-#include <tbb/info.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
-#include <atomic>
 #include <exception>
 #include <mutex>
-#include <set>
-#include <sstream>
 
-#include "geometry/bvh.hpp"
 #include "io/atomic_file.hpp"
-#include "io/csv.hpp"
-#include "io/mesh_file.hpp"
 #include "io/sha256.hpp"
-#include "io/vertex_weights.hpp"
-#include "massage/reference.hpp"
-#include "mesh/errors.hpp"
-#include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
-#include "pipeline/fold_check.hpp"
-#include "pipeline/fold_repair.hpp"
-#include "pipeline/frame_extras.hpp"
+#include "pipeline/frame_output.hpp"
+#include "pipeline/frame_processor.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
-#include "pipeline/run_text.hpp"
 #include "pipeline/shard.hpp"
 
 namespace sm {
@@ -34,101 +20,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string frame_label(const SequencePlan& plan, int index) {
-  return plan.source->label(index);
-}
-
-// Why `frame` cannot be massaged with the template's connectivity, or "" if it can.
-std::string connectivity_mismatch(const SequencePlan& plan, int index, const TriMesh& frame) {
-  const TriMesh& t = plan.templ;
-  const std::string who = frame_label(plan, index);
-  const std::string like = ", but the template, " + plan.template_source + ", has ";
-  if (frame.num_vertices() != t.num_vertices())
-    return who + ": " + std::to_string(frame.num_vertices()) + " vertices" + like +
-           std::to_string(t.num_vertices());
-  if (frame.num_triangles() != t.num_triangles())
-    return who + ": " + std::to_string(frame.num_triangles()) + " triangles" + like +
-           std::to_string(t.num_triangles());
-  for (int k = 0; k < t.num_triangles(); ++k) {
-    if (frame.F.row(k) == t.F.row(k)) continue;
-    auto corners = [](const Triangles& F, int k) {
-      return std::to_string(F(k, 0) + 1) + " " + std::to_string(F(k, 1) + 1) + " " +
-             std::to_string(F(k, 2) + 1);
-    };
-    return who + ": faces differ from the template's, " + plan.template_source + ": triangle " +
-           std::to_string(k + 1) + " has vertices " + corners(frame.F, k) + ", the template's " +
-           corners(t.F, k) + " (1-based)";
-  }
-  return "";
-}
-
-// Reads every selected frame (a few at a time) and throws for the first one, in frame order,
-// whose connectivity differs from the template's.
-void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
-  const FrameSource& source = *plan.source;
-  std::vector<std::string> problems(plan.run_frames.size());
-  arena.execute([&] {
-    tbb::parallel_for(size_t{0}, plan.run_frames.size(), [&](size_t k) {
-      const int index = plan.run_frames[k];
-      if (index == plan.template_frame) return;
-      problems[k] =
-          connectivity_mismatch(plan, index, source.decode(index, source.fetch(index)).mesh);
-    });
-  });
-  for (const std::string& problem : problems)
-    if (!problem.empty()) throw InputError(problem);
-}
-
-// distortion/<frame name>.csv
-fs::path distortion_csv_name(const SequencePlan& plan, int index) {
-  return fs::path(plan.source->name(index)).replace_extension(".csv");
-}
-
-// The distortion table of a frame, relative to output.dir.
-fs::path distortion_file(const SequencePlan& plan, int index) {
-  return fs::path("distortion") / distortion_csv_name(plan, index);
-}
-
-// Refuses an output file that is one of the inputs.
-void check_outputs(const SequencePlan& plan) {
-  const SequenceJobOptions& c = plan.config;
-  std::set<fs::path> inputs;
-  auto canonical = [](const fs::path& p) {
-    std::error_code ec;  // a path that cannot be resolved is compared as written
-    const fs::path resolved = fs::weakly_canonical(p, ec);
-    return (ec ? fs::absolute(p) : resolved).lexically_normal();
-  };
-  std::vector<int> read = plan.run_frames;
-  if (plan.template_frame >= 0) read.push_back(plan.template_frame);
-  for (const fs::path& file : plan.source->files(read)) inputs.insert(canonical(file));
-  if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
-  std::vector<fs::path> outputs = plan.sink->files(plan.run_frames);
-  outputs.push_back(c.output.dir / summary_file_name(c.shard));
-  outputs.push_back(c.output.dir / report_file_name(c.shard));
-  for (int index : plan.run_frames) {
-    outputs.push_back(record_file(c.output.dir, plan.source->name(index)));
-    if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / distortion_file(plan, index));
-  }
-  for (fs::path& file : plan.extras->files(plan.run_frames)) outputs.push_back(std::move(file));
-  for (const fs::path& out : outputs)
-    if (inputs.count(canonical(out)))
-      throw ConfigError("output.dir: writing " + out.string() +
-                        " would overwrite an input file; choose another output folder");
-}
-
 // One frame in flight through the pipeline.
 struct Work {
   int index = 0;
-  std::string bytes;  // what the source fetched (the input file as read, if any)
-  std::string out;    // the output frame, encoded by the sink
-  std::string csv;    // per-triangle distortion (if asked)
-  ExtraFrame extras;  // colored, checker and iterations outputs (if asked)
+  std::string bytes;                 // what the source fetched (the input file as read, if any)
+  std::vector<OutputFrame> outputs;  // each output's part, as plan.outputs
+  bool needs_shared = false;  // an output's shared files must be in place before the record
   FrameSummary summary;
   bool has_output = true;  // false: failed, and output.on_failure is "skip"
   FrameRecord record;      // the record to write, or the one resumed from
   bool resumed = false;    // the record is current: nothing to compute or write
   std::string redo;        // resuming: why the frame is processed again
 };
+using WorkPtr = std::shared_ptr<Work>;
+
+bool has_output(const FrameSummary& s, OnFailure on_failure) {
+  return !(s.status == FrameStatus::Failed && on_failure == OnFailure::Skip);
+}
 
 // Why the frame is processed again although resuming ("" if its record is current).
 std::string resume_problem(const SequencePlan& plan, int index, const std::string& input_hash,
@@ -148,68 +56,48 @@ std::string resume_problem(const SequencePlan& plan, int index, const std::strin
   return "";
 }
 
-RecordedOutput recorded(const fs::path& path, const std::string& bytes) {
-  return {path.generic_string(), bytes.size(), sha256_hex(bytes)};
+bool wants_shear_per_iteration(const SequencePlan& plan, int index) {
+  for (const auto& output : plan.outputs)
+    if (output->wants_shear_per_iteration(index)) return true;
+  return false;
 }
 
-// The fold limit (checks.max_folded_*) that `folded` triangles exceed, or "".
-std::string fold_limit_exceeded(const SequencePlan& plan, int folded) {
-  const FrameCheckOptions& checks = plan.config.checks;
-  const int m = static_cast<int>(plan.templ.F.rows());
-  if (checks.max_folded_triangles && folded > *checks.max_folded_triangles)
-    return "checks.max_folded_triangles = " + std::to_string(*checks.max_folded_triangles);
-  if (checks.max_folded_fraction && folded > *checks.max_folded_fraction * m)
-    return "checks.max_folded_fraction = " + format_number(*checks.max_folded_fraction) + " of " +
-           std::to_string(m) + " triangles";
-  return "";
-}
-
-// Non-finite positions, then folds: the reason the optimized positions `V` of a frame read as
-// `input` fail the checks, or "".
-std::string check_output(const SequencePlan& plan, const TriMesh& input, const Positions& V,
-                         FrameSummary& s) {
-  if (std::string bad = non_finite_positions(V); !bad.empty())
-    return "non-finite positions: output " + bad;
-  const FoldCount folds =
-      count_folded_triangles(plan.templ.F, plan.massager->topology(), input.V, V);
-  s.folded_triangles = folds.folded;
-  const std::string over = fold_limit_exceeded(plan, folds.folded);
-  if (!over.empty())
-    return "folded triangles: " + std::to_string(folds.folded) +
-           " output triangles are folded over (normal opposed to the input frame's), more than " +
-           over;
-  return "";
-}
-
-// checks.repair_folds: when the optimized positions have more folded triangles than the limits
-// allow (with max_folded_triangles 0: any), solves again with the folded region pulled back
-// towards the input until no fold is left (fold_repair.hpp); a repaired frame takes the new
-// positions and says so in its warnings, a frame that cannot be repaired keeps its first result,
-// which check_output then fails as before. Frames within the limits are left as they are.
-void repair_frame(const SequencePlan& plan, const TriMesh& input, const Reference& reference,
-                  MassageResult& result, FrameSummary& s) {
-  if (!non_finite_positions(result.V).empty()) return;
-  const Topology& topology = plan.massager->topology();
-  std::vector<int> folded;
-  const int count =
-      count_folded_triangles(plan.templ.F, topology, input.V, result.V, &folded).folded;
-  if (count == 0 || fold_limit_exceeded(plan, count).empty()) return;
-  const FrameCheckOptions& checks = plan.config.checks;
-  const FoldRepair fix = repair_folds(plan.templ, plan.config.massage, topology, input.V,
-                                      reference, folded, checks.repair_rings, checks.repair_rounds);
-  const std::string what = "fold repair: " + std::to_string(count) + " folded triangles";
-  if (fix.repaired) {
-    result.V = fix.V;
-    s.warnings.push_back(what + " repaired in " + std::to_string(fix.rounds) + " rounds, " +
-                         std::to_string(fix.pinned) + " vertices kept at the input and " +
-                         std::to_string(fix.weighted) + " pulled towards it");
-  } else {
-    s.warnings.push_back(what + " not repaired: " +
-                         (fix.failure.empty() ? std::to_string(fix.folded_left) +
-                                                    " still folded after " +
-                                                    std::to_string(fix.rounds) + " rounds"
-                                              : "the re-solve failed: " + fix.failure));
+// The record of a processed frame: the hashes, every output file it has (path, size, SHA-256)
+// and the outputs' record rows.
+void fill_record(const SequencePlan& plan, Work& w) {
+  FrameRecord& r = w.record;
+  r.config_hash = plan.config_hash;
+  r.template_hash = plan.template_hash;
+  r.outputs.clear();
+  r.iterations_csv.clear();
+  for (const OutputFrame& part : w.outputs) {
+    if (w.has_output)
+      for (const auto& [path, bytes] : part.files)
+        r.outputs.push_back({path.generic_string(), bytes.size(), sha256_hex(bytes)});
+    w.needs_shared = w.needs_shared || (w.has_output && part.needs_shared);
+    r.iterations_csv += part.record_rows;
   }
+  r.summary = w.summary;
+}
+
+// The frame through the processor's stages: optimize → check → measure → encode.
+void process_frame(const SequencePlan& plan, Work& w) {
+  const auto t0 = Clock::now();
+  const FrameProcessor& processor = *plan.processor;
+  const std::string label = plan.source->label(w.index);
+  ProcessedFrame f =
+      processor.start(w.index, plan.source->decode(w.index, std::move(w.bytes)), label);
+  processor.optimize(f, label, wants_shear_per_iteration(plan, w.index));
+  processor.check(f);
+  processor.measure(f);
+  w.outputs = processor.encode(f, plan.outputs);
+  f.summary.file = plan.source->name(w.index);
+  f.summary.time = plan.source->time(w.index);
+  // 0 without timings: records reproduce byte for byte.
+  f.summary.seconds = plan.config.output.timings ? seconds_since(t0) : 0.0;
+  w.summary = std::move(f.summary);
+  w.has_output = has_output(w.summary, plan.config.output.on_failure);
+  fill_record(plan, w);
 }
 
 void write_record(const SequencePlan& plan, const Work& w) {
@@ -217,386 +105,197 @@ void write_record(const SequencePlan& plan, const Work& w) {
                     to_json(w.record).dump(1) + "\n");
 }
 
-void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
-  const auto t0 = Clock::now();
-  const SequenceJobOptions& c = plan.config;
-  const SourceFrame file = plan.source->decode(w.index, std::move(w.bytes));
-  if (std::string problem = connectivity_mismatch(plan, w.index, file.mesh); !problem.empty())
-    throw InputError(problem);
-
-  FrameSummary& s = w.summary;
-  s.frame = w.index;
-  s.file = plan.source->name(w.index);
-  s.time = plan.source->time(w.index);
-  s.warnings = file.warnings;
-  s.vertices = file.mesh.num_vertices();
-  s.triangles = file.mesh.num_triangles();
-  const Triangles& F = plan.templ.F;
-  const Eigen::VectorXd before = shear_distortion(plan.templ.V, file.mesh.V, F);
-
-  Positions V = file.mesh.V;
-  bool unchanged = false;
-  std::optional<Reference> reference;
-  MassageResult result;
-  std::vector<std::optional<DistortionSummary>> shear_per_iteration;  // iterations.csv
-  if (w.index == plan.template_frame && !c.templ.optimize) {
-    s.status = FrameStatus::Template;
-    unchanged = true;
-  } else if (std::string bad = non_finite_positions(file.mesh.V); !bad.empty()) {
-    s.status = FrameStatus::Failed;  // only a source that does not check its frames gets here
-    s.failure = "non-finite positions: input " + bad;
-    unchanged = true;
-  } else {
-    const std::string name = frame_label(plan, w.index);
-    reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology(),
-                      &plan.massager->template_bvh());
-    result = plan.extras->wants_shear_per_iteration(w.index)
-                 ? plan.massager->run(file.mesh.V, *reference,
-                                      shear_observer(plan.templ, shear_per_iteration))
-                 : plan.massager->run(file.mesh.V, *reference);
-    s.iterations = static_cast<int>(result.iterations.size());
-    if (result.ok && c.checks.repair_folds) repair_frame(plan, file.mesh, *reference, result, s);
-    if (!result.ok) {
-      s.status = FrameStatus::Failed;
-      s.failure = "optimizer failed: " + result.failure;
-      unchanged = true;
-    } else if (std::string bad = check_output(plan, file.mesh, result.V, s); !bad.empty()) {
-      s.status = FrameStatus::Failed;
-      s.failure = std::move(bad);
-      unchanged = true;
-    } else {
-      s.status = FrameStatus::Optimized;
-      V = result.V;
-      const TriMesh output{V, F};
-      const Topology& topology = plan.massager->topology();
-      const DistanceLayout* layout = plan.distance_layout.get();
-      std::optional<DistanceWorkspaces::Lease> lease;
-      if (plan.distance_workspaces) lease.emplace(plan.distance_workspaces->acquire());
-      DistanceWorkspace own;
-      DistanceWorkspace* work = lease ? lease->get() : &own;
-      s.out_to_in = one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(),
-                                       &topology, layout, work);
-      TriangleBvh& output_bvh = work->bvh;
-      output_bvh = reference->bvh();  // same triangles: refit, no rebuild
-      output_bvh.refit(V);
-      TrianglePlanes& output_planes = work->planes;
-      output_planes.update(V, F, &topology);
-      s.in_to_out = one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology,
-                                       layout, work);
-    }
-  }
-  w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
-  if (w.has_output) w.out = plan.sink->encode(file, V, unchanged);
-  const Eigen::VectorXd after = unchanged ? before : shear_distortion(plan.templ.V, V, F);
-  s.shear_before = summarize_distortion(before);
-  s.shear_after = summarize_distortion(after);
-  if (c.output.per_triangle_csv && w.has_output) w.csv = format_distortion_csv(before, after);
-  if (plan.extras->any()) {
-    w.extras = extras.encode({w.index, &file, &V, &before, &after, reference ? &result : nullptr,
-                              reference ? &*reference : nullptr, &shear_per_iteration});
-    // In the frame's warnings, so that its record keeps it (resume, merge).
-    if (!w.extras.warning.empty()) s.warnings.insert(s.warnings.begin(), w.extras.warning);
-  }
-
-  if (const std::optional<Positions> clean = plan.source->ground_truth(w.index)) {
-    const double unit = mean_edge_length(plan.templ);
-    const Eigen::VectorXd e_in = (file.mesh.V - *clean).rowwise().norm() / unit;
-    const Eigen::VectorXd e_out = (V - *clean).rowwise().norm() / unit;
-    const TriMesh truth{*clean, F};
-    s.ground_truth = GroundTruthError{e_in.mean(), e_in.maxCoeff(), e_out.mean(), e_out.maxCoeff(),
-                                      correspondence_error(file.mesh.V, truth, unit),
-                                      correspondence_error(V, truth, unit)};
-  }
-  s.seconds = c.output.timings ? seconds_since(t0) : 0.0;  // 0: records reproduce byte for byte
-
-  FrameRecord& r = w.record;
-  r.config_hash = plan.config_hash;
-  r.template_hash = plan.template_hash;
-  r.outputs.clear();
-  if (w.has_output) {
-    r.outputs.push_back(recorded(plan.sink->output_file(w.index), w.out));
-    if (c.output.per_triangle_csv)
-      r.outputs.push_back(recorded(distortion_file(plan, w.index), w.csv));
-    for (const auto& [path, bytes] : w.extras.files) r.outputs.push_back(recorded(path, bytes));
-  }
-  r.summary = s;
-  r.iterations_csv = w.extras.iterations_csv;
-}
-
 // A frame's files, written in the parallel stage: no other frame writes them, so the frames'
 // writes (and their fsyncs) overlap the others' work instead of queueing in the serial stage. The
 // order within the frame is kept: the old record is removed first, then the outputs are written
-// (or, for a frame without output, removed), then the record, which comes back last. With extra
-// outputs, which the serial stage writes in frame order (the checker texture comes with the first
-// checker frame), the record waits for them there (write_record). Frees the encoded bytes.
+// (or, for a frame without output, removed), then the record, which comes back last. A frame
+// whose files need an output's shared files (the checker texture, written in frame order with the
+// first frame that needs it) has its record written in the serial stage, after them. Frees the
+// encoded bytes.
 void write_frame_files(const SequencePlan& plan, Work& w) {
-  const SequenceJobOptions& c = plan.config;
-  const fs::path& out = c.output.dir;
+  const fs::path& out = plan.config.output.dir;
   std::error_code ec;
   fs::remove(record_file(out, plan.source->name(w.index)), ec);
-  const fs::path frame = out / plan.sink->output_file(w.index);
-  const fs::path csv = out / distortion_file(plan, w.index);
-  if (w.has_output) {
-    write_file_atomic(frame, w.out);
-    if (c.output.per_triangle_csv) write_file_atomic(csv, w.csv);
-  } else {
-    fs::remove(frame, ec);
-    fs::remove(csv, ec);
-    for (const auto& [file, bytes] : w.extras.files) fs::remove(out / file, ec);
-    w.extras.files.clear();
+  for (OutputFrame& part : w.outputs) {
+    for (const auto& [file, bytes] : part.files) {
+      if (w.has_output)
+        write_file_atomic(out / file, bytes);
+      else
+        fs::remove(out / file, ec);
+    }
+    part.files.clear();
+    part.files.shrink_to_fit();
   }
-  std::string().swap(w.out);
-  std::string().swap(w.csv);
-  if (!plan.extras->any()) write_record(plan, w);
+  if (!w.needs_shared) write_record(plan, w);
 }
+
+// One run of a plan: the pipeline's three stages (read in order → process and write each frame
+// in parallel → complete in order) and what the run keeps between them.
+class SequenceRun {
+ public:
+  SequenceRun(const SequencePlan& plan, const RunHooks& hooks)
+      : plan_(plan), hooks_(hooks), shared_written_(plan.outputs.size()) {}
+
+  SequenceResult run() {
+    t0_ = Clock::now();
+    result_.warnings = plan_.warnings;
+    start();
+    tbb::task_arena arena(plan_.threads);
+    arena.execute([&] {
+      tbb::parallel_pipeline(
+          static_cast<size_t>(plan_.frames_in_flight),
+          tbb::make_filter<void, WorkPtr>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) { return read(fc); }) &
+              tbb::make_filter<WorkPtr, WorkPtr>(
+                  tbb::filter_mode::parallel,
+                  [&](WorkPtr w) { return guarded(std::move(w), &SequenceRun::process); }) &
+              tbb::make_filter<WorkPtr, void>(tbb::filter_mode::serial_in_order, [&](WorkPtr w) {
+                guarded(std::move(w), &SequenceRun::complete);
+              }));
+    });
+    if (error_) std::rethrow_exception(error_);
+    finish();
+    return std::move(result_);
+  }
+
+ private:
+  // Removes what an earlier run left that would no longer describe the files: stale
+  // temporaries, the summary and report (written again when this run ends, or stops); prepares
+  // the source and starts the outputs.
+  void start() {
+    const fs::path& out = plan_.config.output.dir;
+    for (const char* dir : {".", "records", "input", "ground_truth"})
+      remove_stale_temporaries(out / dir);
+    for (const std::string& name :
+         {summary_file_name(plan_.config.shard), report_file_name(plan_.config.shard)}) {
+      std::error_code ec;
+      fs::remove(out / name, ec);
+    }
+    plan_.source->prepare();
+    for (const auto& output : plan_.outputs) {
+      for (const fs::path& dir : output->folders()) remove_stale_temporaries(dir);
+      output->start(plan_);
+    }
+  }
+
+  // Stage 1 (serial, in order): the next frame's bytes, or the end of the input.
+  WorkPtr read(tbb::flow_control& fc) {
+    const size_t total = plan_.run_frames.size();
+    if (next_ < total && hooks_.cancel && hooks_.cancel->load()) result_.interrupted = true;
+    if (next_ >= total || result_.interrupted || failed_) {
+      fc.stop();
+      return nullptr;
+    }
+    auto w = std::make_shared<Work>();
+    w->index = plan_.run_frames[next_++];
+    return guarded(std::move(w), &SequenceRun::fetch);
+  }
+
+  WorkPtr fetch(WorkPtr w) {
+    w->bytes = plan_.source->fetch(w->index);
+    return w;
+  }
+
+  // Stage 2 (parallel): the frame resumed from its record, or processed and its files written.
+  WorkPtr process(WorkPtr w) {
+    const std::string input_hash = plan_.source->input_hash(w->index, w->bytes);
+    if (plan_.config.resume) {
+      w->redo = resume_problem(plan_, w->index, input_hash, w->record);
+      if (w->redo.empty()) {
+        w->resumed = true;
+        w->summary = w->record.summary;
+        w->summary.resumed = true;
+        w->has_output = has_output(w->summary, plan_.config.output.on_failure);
+        return w;
+      }
+    }
+    w->record.input_hash = input_hash;
+    process_frame(plan_, *w);
+    if (!failed_) write_frame_files(plan_, *w);  // else dropped, like the others
+    return w;
+  }
+
+  // Stage 3 (serial, in order): the shared files a frame needs and its record if they held it
+  // back; the frame's row, warnings and progress.
+  WorkPtr complete(WorkPtr w) {
+    if (w->resumed) {
+      ++result_.resumed;
+    } else {
+      if (plan_.config.resume) ++result_.redone[w->redo];
+      if (w->needs_shared) {
+        write_shared_files(*w);
+        write_record(plan_, *w);
+      }
+    }
+    if (w->has_output) {
+      done_.frames.push_back(w->index);
+      done_.names.push_back(w->summary.file);
+    }
+    done_.record_rows += w->record.iterations_csv;
+    const FrameSummary& s = w->summary;
+    append_frame_warnings(s, plan_.config.output.on_failure, result_.warnings);
+    if (s.status == FrameStatus::Failed) ++result_.failed;
+    result_.frames.push_back(std::move(w->summary));
+    if (hooks_.progress)
+      hooks_.progress(result_.frames.back(), static_cast<int>(result_.frames.size()),
+                      static_cast<int>(plan_.run_frames.size()), seconds_since(t0_));
+    return w;
+  }
+
+  void write_shared_files(const Work& w) {
+    for (size_t k = 0; k < plan_.outputs.size(); ++k) {
+      if (!w.outputs[k].needs_shared || shared_written_[k]) continue;
+      for (const auto& [file, bytes] : plan_.outputs[k]->shared_files())
+        write_file_atomic(plan_.config.output.dir / file, bytes);
+      shared_written_[k] = true;
+    }
+  }
+
+  // The outputs' whole-run files, summary.csv and report.json.
+  void finish() {
+    const SequenceJobOptions& c = plan_.config;
+    for (const auto& output : plan_.outputs)
+      for (std::string& warning : output->finish(done_).warnings)
+        result_.warnings.push_back(std::move(warning));
+    result_.seconds = seconds_since(t0_);
+    write_file_atomic(c.output.dir / summary_file_name(c.shard),
+                      format_summary_csv(result_.frames, c.output.timings));
+    write_file_atomic(c.output.dir / report_file_name(c.shard),
+                      make_report(plan_, result_).dump(2) + "\n");
+  }
+
+  // Runs `stage` only while nothing failed, and records its exception: the first exception of a
+  // stage stops the input and is rethrown once the frames in flight have drained (those that
+  // finish after it are not written; one finishing at the same moment may have written its
+  // complete files). Thrown through parallel_pipeline, it would leak them (oneTBB does not
+  // destroy the tokens of a cancelled pipeline).
+  WorkPtr guarded(WorkPtr w, WorkPtr (SequenceRun::*stage)(WorkPtr)) {
+    if (!failed_) try {
+        w = (this->*stage)(std::move(w));
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex_);
+        if (!error_) error_ = std::current_exception();
+        failed_ = true;
+      }
+    return w;
+  }
+
+  const SequencePlan& plan_;
+  const RunHooks& hooks_;
+  Clock::time_point t0_;
+  SequenceResult result_;
+  size_t next_ = 0;                  // the next of plan.run_frames to read
+  FinishedFrames done_;              // what the outputs finish from
+  std::vector<bool> shared_written_;  // the outputs' shared files, this run
+  std::exception_ptr error_;
+  std::mutex error_mutex_;
+  std::atomic<bool> failed_{false};
+};
 
 }  // namespace
 
-const char* status_name(FrameStatus status) {
-  switch (status) {
-    case FrameStatus::Optimized:
-      return "optimized";
-    case FrameStatus::Template:
-      return "template";
-    case FrameStatus::Failed:
-      return "failed";
-  }
-  return "";
-}
-
-SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
-  SequencePlan plan;
-  plan.config = config;
-  const SequenceJobOptions& c = plan.config;
-  plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
-  plan.frames_in_flight = c.frames_in_flight > 0 ? c.frames_in_flight : 2 * plan.threads;
-
-  plan.source = make_frame_source(c);
-  plan.sink = make_frame_sink(c, plan.source);
-  plan.extras = std::make_shared<const FrameExtras>(c, plan.source);
-  const int count = plan.source->size();
-  plan.selected = select_frames(c.input.range, count);
-  plan.run_frames = shard_frames(plan.selected, c.shard);
-  for (std::string& warning : plan.extras->check(plan.selected))
-    plan.warnings.push_back(std::move(warning));
-
-  if (c.templ.mesh.empty()) {
-    if (c.templ.frame >= count)
-      throw ConfigError("template.frame: " + std::to_string(c.templ.frame) +
-                        " is out of range (the sequence has " + std::to_string(count) +
-                        " frames, 0 to " + std::to_string(count - 1) + ")");
-    plan.template_frame = c.templ.frame;
-    plan.template_source = frame_label(plan, plan.template_frame);
-    plan.templ = plan.source->template_frame(plan.template_frame);
-  } else {
-    plan.template_source = c.templ.mesh.filename().string();
-    plan.templ = read_mesh(c.templ.mesh);
-  }
-  if (!c.massage.vertex_weights_file.empty())
-    plan.config.massage.vertex_weights = read_vertex_weights(
-        c.massage.vertex_weights_file, plan.templ.num_vertices(), plan.template_source);
-  plan.massager =
-      std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
-  plan.distance_layout =
-      std::make_shared<const DistanceLayout>(plan.templ.F, plan.templ.num_vertices());
-  plan.distance_workspaces = std::make_shared<DistanceWorkspaces>();
-  plan.config_hash = frame_config_hash(c);
-  plan.template_hash = template_hash(plan.templ);
-
-  const MeshReport report = check_mesh(plan.templ, plan.massager->topology());
-  if (!report.ok_for_optimization())
-    plan.warnings.push_back("template (" + plan.template_source + "): " + report.describe());
-  if (const int fallback = plan.massager->weights().fallback_vertices; fallback > 0)
-    plan.warnings.push_back("template (" + plan.template_source + "): " + std::to_string(fallback) +
-                            " vertices with degenerate corners use uniform weights");
-  if (c.input.range.stop && *c.input.range.stop > count)
-    plan.warnings.push_back("input.range.stop " + std::to_string(*c.input.range.stop) +
-                            " is past the last frame; the sequence has " + std::to_string(count));
-
-  if (plan.source->needs_check()) {
-    tbb::task_arena arena(plan.threads);
-    check_frames(plan, arena);
-  }
-  check_outputs(plan);
-  return plan;
-}
-
-std::string describe_plan(const SequencePlan& plan) {
-  const SequenceJobOptions& c = plan.config;
-  std::ostringstream s;
-  s << "job: sequence\n";
-  s << "input: " << plan.source->describe() << "\n";
-  s << "frames: " << plan.selected.size() << " selected (" << format_frame_range(c.input.range)
-    << "): " << plan.source->name(plan.selected.front());
-  if (plan.selected.size() > 1) s << " ... " << plan.source->name(plan.selected.back());
-  s << "\n";
-  if (c.shard.sharded()) {
-    s << shard_label(c.shard) << ": " << plan.run_frames.size() << " frames";
-    if (!plan.run_frames.empty()) {
-      s << ": " << plan.source->name(plan.run_frames.front());
-      if (plan.run_frames.size() > 1) s << " ... " << plan.source->name(plan.run_frames.back());
-    }
-    s << "\n";
-  }
-  if (c.resume) {
-    int current = 0;  // records of this config and template (inputs and outputs checked at run)
-    for (int index : plan.run_frames) {
-      const auto r = read_frame_record(record_file(c.output.dir, plan.source->name(index)));
-      current += r && r->config_hash == plan.config_hash && r->template_hash == plan.template_hash;
-    }
-    s << "resume: " << current << " of " << plan.run_frames.size()
-      << " frames have a record of this config and template (skipped if their input and "
-         "outputs are unchanged)\n";
-  }
-  s << "template: " << plan.template_source << ", " << plan.templ.num_vertices() << " vertices, "
-    << plan.templ.num_triangles() << " triangles";
-  if (plan.template_frame >= 0)
-    s << (c.templ.optimize ? "; optimized like the others" : "; written unchanged");
-  s << "\n";
-  s << "massage: " << massage_text(c.massage) << "\n";
-  if (c.measures.adaptive)
-    s << "distances (summary.csv): adaptive, at the vertices and centroids, then"
-      << (c.measures.sample_edges ? " along the edges" : "")
-      << (c.measures.sample_edges && c.measures.sample_faces ? " and" : "")
-      << (c.measures.sample_faces ? " inside" : "") << " the triangles above "
-      << format_number(c.measures.refine_above) << " of the maximum, samples every "
-      << format_number(c.measures.spacing) << " mean edge lengths\n";
-  else
-    s << "distances (summary.csv): samples every " << format_number(c.measures.spacing)
-      << " mean edge lengths, at the vertices"
-      << (c.measures.sample_edges ? ", along the edges" : "")
-      << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
-  s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
-  s << "output: " << c.output.dir.string() << "\n";
-  s << plan.sink->describe(plan.run_frames);
-  if (c.output.per_triangle_csv)
-    s << "  distortion/<name>.csv (" << plan.run_frames.size() << " files)\n";
-  s << plan.extras->describe(plan.run_frames);
-  s << "  records/<name>.json (" << plan.run_frames.size() << " files)\n";
-  s << "  " << summary_file_name(c.shard) << ", " << report_file_name(c.shard) << "\n";
-  for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
-  return s.str();
-}
-
 SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks) {
-  const auto t0 = Clock::now();
-  const SequenceJobOptions& c = plan.config;
-  const fs::path& out = c.output.dir;
-  SequenceResult result;
-  result.warnings = plan.warnings;
-  for (const char* dir :
-       {".", "frames", "distortion", "positions", "records", "input", "ground_truth"})
-    remove_stale_temporaries(out / dir);
-  // The summary and report of an earlier run would no longer describe the files: they are written
-  // again when this run ends (or stops at an interruption), and are absent until then.
-  for (const std::string& name : {summary_file_name(c.shard), report_file_name(c.shard)}) {
-    std::error_code ec;
-    fs::remove(out / name, ec);
-  }
-  plan.source->prepare();
-  for (const fs::path& dir : plan.extras->folders()) remove_stale_temporaries(dir);
-  const std::unique_ptr<FrameWriter> writer = plan.sink->start();
-  const std::unique_ptr<ExtrasRun> extras = plan.extras->start(plan);
-
-  const size_t total = plan.run_frames.size();
-  size_t next = 0;
-  // The first exception of a stage stops the input and is rethrown once the frames in flight have
-  // drained (those that finish after it are not written; one finishing at the same moment may
-  // have written its complete files): thrown through parallel_pipeline, it would leak them (oneTBB
-  // does not destroy the tokens of a cancelled pipeline).
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  std::atomic<bool> failed{false};
-  const auto record_error = [&] {
-    const std::lock_guard<std::mutex> lock(error_mutex);
-    if (!error) error = std::current_exception();
-    failed = true;
-  };
-  // A stage that runs only while nothing failed and records its exception (what the last stage
-  // returns is dropped).
-  const auto guarded = [&](auto stage) {
-    return [&, stage](std::shared_ptr<Work> w) {
-      if (!failed) try {
-          w = stage(std::move(w));
-        } catch (...) {
-          record_error();
-        }
-      return w;
-    };
-  };
-  tbb::task_arena arena(plan.threads);
-  arena.execute([&] {
-    tbb::parallel_pipeline(
-        static_cast<size_t>(plan.frames_in_flight),
-        tbb::make_filter<void, std::shared_ptr<Work>>(
-            tbb::filter_mode::serial_in_order,
-            [&](tbb::flow_control& fc) -> std::shared_ptr<Work> {
-              if (next < total && hooks.cancel && hooks.cancel->load()) result.interrupted = true;
-              if (next >= total || result.interrupted || failed) {
-                fc.stop();
-                return nullptr;
-              }
-              auto w = std::make_shared<Work>();
-              w->index = plan.run_frames[next++];
-              return guarded([&](std::shared_ptr<Work> w) {
-                w->bytes = plan.source->fetch(w->index);
-                return w;
-              })(std::move(w));
-            }) &
-            tbb::make_filter<std::shared_ptr<Work>, std::shared_ptr<Work>>(
-                tbb::filter_mode::parallel, guarded([&](std::shared_ptr<Work> w) {
-                  const std::string input_hash = plan.source->input_hash(w->index, w->bytes);
-                  if (c.resume) {
-                    w->redo = resume_problem(plan, w->index, input_hash, w->record);
-                    if (w->redo.empty()) {
-                      w->resumed = true;
-                      w->summary = w->record.summary;
-                      w->summary.resumed = true;
-                      w->has_output = !(w->summary.status == FrameStatus::Failed &&
-                                        c.output.on_failure == OnFailure::Skip);
-                      return w;
-                    }
-                  }
-                  w->record.input_hash = input_hash;
-                  process_frame(plan, *extras, *w);
-                  if (!failed) write_frame_files(plan, *w);  // else dropped, like the others
-                  return w;
-                })) &
-            tbb::make_filter<std::shared_ptr<Work>, void>(
-                tbb::filter_mode::serial_in_order, guarded([&](std::shared_ptr<Work> w) {
-                  if (w->resumed) {
-                    if (w->has_output) writer->keep(w->index);
-                    extras->keep(w->record.iterations_csv);
-                    ++result.resumed;
-                  } else {
-                    // The frame's own files are written (write_frame_files); its extra outputs
-                    // (or, without output, its iterations.csv rows) go here, in frame order, and
-                    // then its record if they held it back.
-                    if (c.resume) ++result.redone[w->redo];
-                    if (w->has_output) writer->keep(w->index);
-                    if (plan.extras->any()) {
-                      extras->write(w->extras);
-                      write_record(plan, *w);
-                    }
-                  }
-                  const FrameSummary& s = w->summary;
-                  append_frame_warnings(s, c.output.on_failure, result.warnings);
-                  if (s.status == FrameStatus::Failed) ++result.failed;
-                  result.frames.push_back(std::move(w->summary));
-                  if (hooks.progress)
-                    hooks.progress(result.frames.back(), static_cast<int>(result.frames.size()),
-                                   static_cast<int>(total), seconds_since(t0));
-                  return w;
-                })));
-  });
-  if (error) std::rethrow_exception(error);
-  for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
-  result.extra_outputs = extras->finish();
-  result.seconds = seconds_since(t0);
-  write_file_atomic(out / summary_file_name(c.shard),
-                    format_summary_csv(result.frames, c.output.timings));
-  write_file_atomic(out / report_file_name(c.shard), make_report(plan, result).dump(2) + "\n");
-  return result;
+  return SequenceRun(plan, hooks).run();
 }
 
 }  // namespace sm

@@ -1,4 +1,4 @@
-// The bad-input catalogue end to end (README "Bad input"): seqmassage run as a subprocess on
+// The bad-input catalogue end to end: seqmassage run as a subprocess on
 // generated frame folders spoilt in one way each. Every case checks the exit code, the message
 // (naming the file, frame, line or key) and that no input is touched and no partial or temporary
 // file is left.

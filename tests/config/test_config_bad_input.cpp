@@ -1,4 +1,4 @@
-// The bad-input catalogue for config files (README "Bad input"): empty, truncated and invalid JSON
+// The bad-input catalogue for config files: empty, truncated and invalid JSON
 // with its line and column, JSON that is valid but not a config, values of the wrong type at every
 // level with their JSON path, and files that cannot be read.
 #include <catch2/catch.hpp>

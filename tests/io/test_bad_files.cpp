@@ -1,4 +1,4 @@
-// The bad-input catalogue for mesh files and output files (README "Bad input"): truncated files,
+// The bad-input catalogue for mesh files and output files: truncated files,
 // non-finite values in every format, and writes that fail (a folder that cannot be created, a
 // full disk) leave neither a partial file nor a temporary one.
 #include <signal.h>

@@ -1,4 +1,4 @@
-// The optimizer on meshes that are valid input but not clean manifolds (README "Bad input"):
+// The optimizer on meshes that are valid input but not clean manifolds:
 // isolated vertices, non-manifold edges and vertices, degenerate and duplicate triangles in the
 // template or in a frame. None may crash or produce a NaN; what happens to each is defined here.
 #include <catch2/catch.hpp>

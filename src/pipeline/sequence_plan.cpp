@@ -1,0 +1,184 @@
+#include "pipeline/sequence_job.hpp"
+
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <set>
+#include <sstream>
+
+#include "io/csv.hpp"
+#include "io/mesh_file.hpp"
+#include "io/vertex_weights.hpp"
+#include "mesh/errors.hpp"
+#include "mesh/mesh_check.hpp"
+#include "pipeline/frame_output.hpp"
+#include "pipeline/frame_processor.hpp"
+#include "pipeline/frame_record.hpp"
+#include "pipeline/report.hpp"
+#include "pipeline/run_text.hpp"
+#include "pipeline/shard.hpp"
+
+// plan_sequence_job and describe_plan (sequence_job.hpp): everything checked before a run.
+
+namespace sm {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Reads every selected frame (a few at a time) and throws for the first one, in frame order,
+// whose connectivity differs from the template's.
+void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
+  const FrameSource& source = *plan.source;
+  std::vector<std::string> problems(plan.run_frames.size());
+  arena.execute([&] {
+    tbb::parallel_for(size_t{0}, plan.run_frames.size(), [&](size_t k) {
+      const int index = plan.run_frames[k];
+      if (index == plan.template_frame) return;
+      problems[k] = plan.processor->connectivity_mismatch(
+          source.label(index), source.decode(index, source.fetch(index)).mesh);
+    });
+  });
+  for (const std::string& problem : problems)
+    if (!problem.empty()) throw InputError(problem);
+}
+
+// Refuses an output file that is one of the inputs.
+void check_outputs(const SequencePlan& plan) {
+  const SequenceJobOptions& c = plan.config;
+  std::set<fs::path> inputs;
+  auto canonical = [](const fs::path& p) {
+    std::error_code ec;  // a path that cannot be resolved is compared as written
+    const fs::path resolved = fs::weakly_canonical(p, ec);
+    return (ec ? fs::absolute(p) : resolved).lexically_normal();
+  };
+  std::vector<int> read = plan.run_frames;
+  if (plan.template_frame >= 0) read.push_back(plan.template_frame);
+  for (const fs::path& file : plan.source->files(read)) inputs.insert(canonical(file));
+  if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
+  std::vector<fs::path> outputs;
+  for (const auto& output : plan.outputs)
+    for (fs::path& file : output->files(plan.run_frames)) outputs.push_back(std::move(file));
+  outputs.push_back(c.output.dir / summary_file_name(c.shard));
+  outputs.push_back(c.output.dir / report_file_name(c.shard));
+  for (int index : plan.run_frames)
+    outputs.push_back(record_file(c.output.dir, plan.source->name(index)));
+  for (const fs::path& out : outputs)
+    if (inputs.count(canonical(out)))
+      throw ConfigError("output.dir: writing " + out.string() +
+                        " would overwrite an input file; choose another output folder");
+}
+
+}  // namespace
+
+SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
+  SequencePlan plan;
+  plan.config = config;
+  const SequenceJobOptions& c = plan.config;
+  plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
+  plan.frames_in_flight = c.frames_in_flight > 0 ? c.frames_in_flight : 2 * plan.threads;
+
+  std::shared_ptr<const GltfSequence> gltf;
+  plan.source = make_frame_source(c, &gltf);
+  plan.outputs = make_frame_outputs({c, plan.source, [gltf] { return gltf; }});
+  const int count = plan.source->size();
+  plan.selected = select_frames(c.input.range, count);
+  plan.run_frames = shard_frames(plan.selected, c.shard);
+  for (const auto& output : plan.outputs)
+    for (std::string& warning : output->check(plan.selected))
+      plan.warnings.push_back(std::move(warning));
+
+  if (c.templ.mesh.empty()) {
+    if (c.templ.frame >= count)
+      throw ConfigError("template.frame: " + std::to_string(c.templ.frame) +
+                        " is out of range (the sequence has " + std::to_string(count) +
+                        " frames, 0 to " + std::to_string(count - 1) + ")");
+    plan.template_frame = c.templ.frame;
+    plan.template_source = plan.source->label(plan.template_frame);
+    plan.templ = plan.source->template_frame(plan.template_frame);
+  } else {
+    plan.template_source = c.templ.mesh.filename().string();
+    plan.templ = read_mesh(c.templ.mesh);
+  }
+  if (!c.massage.vertex_weights_file.empty())
+    plan.config.massage.vertex_weights = read_vertex_weights(
+        c.massage.vertex_weights_file, plan.templ.num_vertices(), plan.template_source);
+  plan.processor = std::make_shared<const FrameProcessor>(plan.templ, c, plan.template_source,
+                                                          plan.template_frame);
+  const Massager& massager = plan.processor->massager();
+  plan.config_hash = frame_config_hash(c);
+  plan.template_hash = template_hash(plan.templ);
+
+  const MeshReport report = check_mesh(plan.templ, massager.topology());
+  if (!report.ok_for_optimization())
+    plan.warnings.push_back("template (" + plan.template_source + "): " + report.describe());
+  if (const int fallback = massager.weights().fallback_vertices; fallback > 0)
+    plan.warnings.push_back("template (" + plan.template_source + "): " + std::to_string(fallback) +
+                            " vertices with degenerate corners use uniform weights");
+  if (c.input.range.stop && *c.input.range.stop > count)
+    plan.warnings.push_back("input.range.stop " + std::to_string(*c.input.range.stop) +
+                            " is past the last frame; the sequence has " + std::to_string(count));
+
+  if (plan.source->needs_check()) {
+    tbb::task_arena arena(plan.threads);
+    check_frames(plan, arena);
+  }
+  check_outputs(plan);
+  return plan;
+}
+
+std::string describe_plan(const SequencePlan& plan) {
+  const SequenceJobOptions& c = plan.config;
+  std::ostringstream s;
+  s << "job: sequence\n";
+  s << "input: " << plan.source->describe() << "\n";
+  s << "frames: " << plan.selected.size() << " selected (" << format_frame_range(c.input.range)
+    << "): " << plan.source->name(plan.selected.front());
+  if (plan.selected.size() > 1) s << " ... " << plan.source->name(plan.selected.back());
+  s << "\n";
+  if (c.shard.sharded()) {
+    s << shard_label(c.shard) << ": " << plan.run_frames.size() << " frames";
+    if (!plan.run_frames.empty()) {
+      s << ": " << plan.source->name(plan.run_frames.front());
+      if (plan.run_frames.size() > 1) s << " ... " << plan.source->name(plan.run_frames.back());
+    }
+    s << "\n";
+  }
+  if (c.resume) {
+    int current = 0;  // records of this config and template (inputs and outputs checked at run)
+    for (int index : plan.run_frames) {
+      const auto r = read_frame_record(record_file(c.output.dir, plan.source->name(index)));
+      current += r && r->config_hash == plan.config_hash && r->template_hash == plan.template_hash;
+    }
+    s << "resume: " << current << " of " << plan.run_frames.size()
+      << " frames have a record of this config and template (skipped if their input and "
+         "outputs are unchanged)\n";
+  }
+  s << "template: " << plan.template_source << ", " << plan.templ.num_vertices() << " vertices, "
+    << plan.templ.num_triangles() << " triangles";
+  if (plan.template_frame >= 0)
+    s << (c.templ.optimize ? "; optimized like the others" : "; written unchanged");
+  s << "\n";
+  s << "massage: " << massage_text(c.massage) << "\n";
+  if (c.measures.adaptive)
+    s << "distances (summary.csv): adaptive, at the vertices and centroids, then"
+      << (c.measures.sample_edges ? " along the edges" : "")
+      << (c.measures.sample_edges && c.measures.sample_faces ? " and" : "")
+      << (c.measures.sample_faces ? " inside" : "") << " the triangles above "
+      << format_number(c.measures.refine_above) << " of the maximum, samples every "
+      << format_number(c.measures.spacing) << " mean edge lengths\n";
+  else
+    s << "distances (summary.csv): samples every " << format_number(c.measures.spacing)
+      << " mean edge lengths, at the vertices"
+      << (c.measures.sample_edges ? ", along the edges" : "")
+      << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
+  s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
+  s << "output: " << c.output.dir.string() << "\n";
+  for (const auto& output : plan.outputs) s << output->describe(plan.run_frames);
+  s << "  records/<name>.json (" << plan.run_frames.size() << " files)\n";
+  s << "  " << summary_file_name(c.shard) << ", " << report_file_name(c.shard) << "\n";
+  for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
+  return s.str();
+}
+
+}  // namespace sm
