@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cli/arguments.hpp"
+#include "cli/signals.hpp"
 #include "config/config.hpp"
 #include "config/reference.hpp"
 #include "mesh/errors.hpp"
@@ -39,9 +40,7 @@ enum ExitCode : int {
   kInput = 3,
   kIo = 4,
   kProcessing = 5,
-  kInterrupted = 130,  // 128 + SIGINT
-  kTerminated = 143,   // 128 + SIGTERM
-};
+};  // a run stopped by a signal: 128 + its number (sm::cli::stopped_exit_code)
 
 // The help of each command: its description (usage, what it does) and footer (outputs, exit
 // status); the options between them are listed from the option definitions below.
@@ -99,7 +98,9 @@ Exit status:
   3    input error: a malformed frame, template or glTF file (the message names the glTF
        element), frames with different vertex counts or faces; for merge, missing,
        incomplete or inconsistent shards (named, with the frames concerned)
-  4    I/O error: a file or folder cannot be read or written
+  4    I/O error: a file or folder cannot be read or written; or another run holds the
+       output folder's lock (.seqmassage.lock; a shard's .seqmassage-shard-I-of-N.lock), the
+       message names its host and pid
   5    processing error: some frames failed (the optimizer failed, non-finite positions, or
        more folded triangles than "checks" allow; reason in summary.csv and on stderr); they
        are written unchanged (or not at all: "output": {"on_failure": "skip"}) and the other
@@ -108,8 +109,10 @@ Exit status:
   130  interrupted (Ctrl-C, SIGINT): the frames in flight were finished; the frames done are
        written and listed in summary.csv; --resume continues
   143  terminated (SIGTERM, as schedulers send): the same as 130
-A second SIGINT or SIGTERM ends the program at once; like SIGKILL, it leaves complete files
-only, and --resume continues.
+  129  hung up (SIGHUP: the terminal or ssh session closed): the same as 130
+A second SIGINT, SIGTERM or SIGHUP ends the program at once; like SIGKILL, it leaves complete
+files only, and --resume continues. SIGPIPE is ignored: with stderr or stdout closed (piped into
+'head'), the run goes on and its outputs complete.
 )";
 
 constexpr const char* kMergeHelp = R"(Usage: seqmassage merge [options] OUTPUT_DIR
@@ -126,8 +129,8 @@ are left in place.
 )";
 
 constexpr const char* kMergeHelpFooter = R"(Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
-the command that redoes them), nothing written; 4 I/O error; 5 merged, but some frames failed
-(as for a run).
+the command that redoes them), nothing written; 4 I/O error, or a shard or run still holds the
+folder's lock; 5 merged, but some frames failed (as for a run).
 )";
 
 constexpr const char* kMeasureHelp = R"(Usage: seqmassage measure [options] MESH REFERENCE
@@ -226,28 +229,6 @@ Args parse_args(int argc, char** argv) {
   return out;
 }
 
-std::atomic<bool> g_interrupted{false};
-volatile std::sig_atomic_t g_signal = 0;  // the first SIGINT or SIGTERM received
-
-extern "C" void on_stop_signal(int sig) {
-  if (g_signal == 0) g_signal = sig;
-  g_interrupted.store(true);
-  // A second one ends the program at once (the default action): files stay complete anyway.
-  struct sigaction dfl {};
-  dfl.sa_handler = SIG_DFL;
-  ::sigaction(SIGINT, &dfl, nullptr);
-  ::sigaction(SIGTERM, &dfl, nullptr);
-}
-
-// Installs (or, with `on` false, removes) the SIGINT and SIGTERM handler.
-void catch_stop_signals(bool on) {
-  struct sigaction action {};
-  action.sa_handler = on ? on_stop_signal : SIG_DFL;
-  sigemptyset(&action.sa_mask);
-  ::sigaction(SIGINT, &action, nullptr);
-  ::sigaction(SIGTERM, &action, nullptr);
-}
-
 std::string shown(const fs::path& p) {
   std::error_code ec;
   const fs::path rel = fs::proximate(p, ec);
@@ -317,13 +298,16 @@ int run(const Args& args) {
 
   Progress progress(args.quiet, ::isatty(STDERR_FILENO) == 1, plan.config.output.on_failure);
   sm::RunHooks hooks;
-  hooks.cancel = &g_interrupted;
+  hooks.cancel = &sm::cli::stop_requested();
+  hooks.notice = [&](const std::string& w) {
+    if (!args.quiet) std::cerr << "seqmassage: warning: " << w << "\n";
+  };
   hooks.progress = [&](const sm::FrameSummary& f, int done, int total, double elapsed) {
     progress.frame(f, done, total, elapsed);
   };
-  catch_stop_signals(true);
+  sm::cli::catch_stop_signals(true);
   const sm::SequenceResult result = sm::run_sequence_job(plan, hooks);
-  catch_stop_signals(false);
+  sm::cli::catch_stop_signals(false);
   progress.clear();
 
   const fs::path& out = plan.config.output.dir;
@@ -336,11 +320,12 @@ int run(const Args& args) {
       std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }
   if (result.interrupted) {
-    std::cerr << "seqmassage: " << (g_signal == SIGTERM ? "terminated (SIGTERM)" : "interrupted")
-              << " after " << result.frames.size() << " of " << plan.run_frames.size()
+    const int sig = sm::cli::stop_signal();
+    std::cerr << "seqmassage: " << sm::cli::stopped_text(sig) << " after " << result.frames.size()
+              << " of " << plan.run_frames.size()
               << " frames; they are written and listed in " << shown(out / summary)
               << "; run again with --resume to finish\n";
-    return g_signal == SIGTERM ? kTerminated : kInterrupted;
+    return sm::cli::stopped_exit_code(sig);
   }
   if (result.failed > 0) {
     std::cerr << "seqmassage: " << result.failed << " of " << result.frames.size()
@@ -443,6 +428,8 @@ int run_merge_command(int argc, char** argv) {
                      "expected one output folder, got " + std::to_string(positional.size())};
   const fs::path dir = positional[0];
   const sm::MergeResult result = sm::merge_shards(dir);
+  for (const std::string& w : result.notices)
+    if (!quiet) std::cerr << "seqmassage: warning: " << w << "\n";
   if (!quiet) {
     std::cerr << "seqmassage: merged " << result.shards << " shards, " << result.frames.size()
               << " frames (" << result.failed << " failed)\n";
@@ -498,6 +485,9 @@ int main(int argc, char** argv) {
   // peak memory is unchanged (bench_sequence's 50 vs 1000 frames shows that it stays flat).
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  // A closed stderr or stdout (piped into `head`) must not end a run: its writes fail, the
+  // outputs still complete.
+  sm::cli::ignore_broken_pipes();
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "merge") return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
   if (command == "config")

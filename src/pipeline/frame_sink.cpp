@@ -83,8 +83,11 @@ class GlbWriter : public FileWriter {
 
 class GlbSink : public FrameSink {
  public:
+  // Refuses, at planning, what the GLB could not be assembled from (sequence.glb is written last).
   GlbSink(const SequenceJobOptions& config, std::shared_ptr<const FrameSource> source)
-      : config_(config), source_(std::move(source)) {}
+      : config_(config), source_(std::move(source)) {
+    check_gltf_sequence_source(*source_->gltf(), config_.output.gltf);
+  }
 
   std::vector<fs::path> files(const std::vector<int>& frames) const override {
     std::vector<fs::path> out;

@@ -11,6 +11,7 @@
 #include "pipeline/frame_record.hpp"
 #include "pipeline/frame_sink.hpp"
 #include "pipeline/iteration_log.hpp"
+#include "pipeline/output_lock.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
 
@@ -142,6 +143,12 @@ std::vector<ShardReport> find_shard_reports(const fs::path& dir) {
 
 MergeResult merge_shards(const fs::path& output_dir) {
   const fs::path dir = fs::absolute(output_dir).lexically_normal();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw IoError("cannot open folder '" + dir.string() +
+                  "': " + (fs::exists(dir, ec) ? "not a folder" : "no such folder"));
+  // The folder's exclusive lock: no shard (nor a whole run) writes while merge reads and writes.
+  const OutputLock lock = lock_output_folder(dir);
   std::vector<ShardReport> shards = find_shard_reports(dir);
   const int N = shards.front().shard.count;
   const ShardReport& ref = shards.front();
@@ -188,9 +195,11 @@ MergeResult merge_shards(const fs::path& output_dir) {
   std::map<int, const ShardReport*> by_index;
   for (const ShardReport& s : shards) by_index[s.shard.index] = &s;
   std::map<int, std::string> owner;  // frame -> shard file
+  std::map<int, int> shard_of;       // frame -> the shard whose block it is in
   for (int i = 0; i < N; ++i) {
     const ShardOptions shard{i, N};
     const std::vector<int> block = shard_frames(selected, shard);
+    for (int f : block) shard_of[f] = i;
     const auto it = by_index.find(i);
     const std::string rerun = "seqmassage --shard " + format_shard(shard) + " --resume CONFIG";
     if (it == by_index.end()) {
@@ -229,6 +238,7 @@ MergeResult merge_shards(const fs::path& output_dir) {
   // Every frame's record, of this job, with its outputs.
   MergeResult result;
   result.shards = N;
+  result.notices = lock.warnings();
   std::string iteration_rows;  // the records' iterations.csv rows, in frame order
   std::vector<int> bad_frames;
   std::string first_bad;
@@ -258,18 +268,21 @@ MergeResult merge_shards(const fs::path& output_dir) {
     iteration_rows += r->iterations_csv;
   }
   if (!bad_frames.empty()) {
-    std::set<std::string> files;
-    for (int f : bad_frames) files.insert(owner.count(f) ? owner[f] : "?");
+    std::set<int> redo;  // every selected frame is in one shard's block
+    for (int f : bad_frames) redo.insert(shard_of.at(f));
     std::string rerun;
-    for (const std::string& file : files) rerun += (rerun.empty() ? "" : ", ") + file;
+    for (int i : redo)
+      rerun += (rerun.empty() ? "" : "; ") + std::string("seqmassage --shard ") +
+               format_shard({i, N}) + " --resume CONFIG";
     problems.push_back("missing or incomplete frames: " + describe_frames(bad_frames, names) +
-                       " (first: " + first_bad + "); run their shards again with --resume (" +
-                       rerun + ")");
+                       " (first: " + first_bad + "); run " +
+                       (redo.size() == 1 ? "its shard" : "their shards") + " again: " + rerun);
   }
   if (!problems.empty()) {
     std::string text = "'" + dir.string() + "': cannot merge " + std::to_string(N) + " shards:";
     for (const std::string& p : problems) text += "\n  " + p;
-    throw InputError(text);
+    throw InputError(text + "\n(CONFIG: the config file the shards ran; then merge again: " +
+                     "seqmassage merge " + output_dir.string() + ")");
   }
 
   // The whole run's outputs.

@@ -23,6 +23,7 @@
 #include "pipeline/fold_check.hpp"
 #include "pipeline/frame_extras.hpp"
 #include "pipeline/frame_record.hpp"
+#include "pipeline/output_lock.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run_text.hpp"
 #include "pipeline/shard.hpp"
@@ -112,6 +113,35 @@ void check_outputs(const SequencePlan& plan) {
     if (inputs.count(canonical(out)))
       throw ConfigError("output.dir: writing " + out.string() +
                         " would overwrite an input file; choose another output folder");
+}
+
+// Refuses two selected frames whose outputs would have the same name, letter case aside (a.obj
+// and a.OBJ both write records/a.json): one would overwrite the other, which one varying from run
+// to run, on any file system, and on a case-insensitive one (macOS, Windows shares) also their
+// frames/ files.
+void check_output_names(const SequencePlan& plan) {
+  const SequenceJobOptions& c = plan.config;
+  const auto folded = [](const fs::path& p) {
+    std::string s = p.generic_string();
+    for (char& ch : s)
+      if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
+    return s;
+  };
+  std::map<std::string, int> writer;  // folded output name -> frame
+  for (int index : plan.selected) {
+    const std::string name = plan.source->name(index);
+    std::vector<fs::path> files = {fs::path("records") / fs::path(name).replace_extension(".json")};
+    if (c.output.per_triangle_csv) files.push_back(distortion_file(plan, index));
+    files.push_back(plan.sink->output_file(index));
+    for (const fs::path& file : files) {
+      const auto [at, fresh] = writer.emplace(folded(file), index);
+      if (fresh || at->second == index) continue;
+      throw InputError("frames " + frame_label(plan, at->second) + " and " +
+                       frame_label(plan, index) + " would both write " + file.generic_string() +
+                       " (their output names differ only in letter case or extension): one "
+                       "would overwrite the other; rename one of them");
+    }
+  }
 }
 
 // One frame in flight through the pipeline.
@@ -335,6 +365,7 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
   const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
   plan.run_frames = shard_frames(plan.selected, c.shard);
+  check_output_names(plan);
   for (std::string& warning : plan.extras->check(plan.selected))
     plan.warnings.push_back(std::move(warning));
 
@@ -439,6 +470,11 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const fs::path& out = c.output.dir;
   SequenceResult result;
   result.warnings = plan.warnings;
+  // One writer per output folder and shard, for the whole run (released when this returns or
+  // throws). Its warnings are not the run's: a resumed run writes what an uninterrupted one does.
+  const OutputLock lock = lock_output_folder(out, c.shard);
+  if (hooks.notice)
+    for (const std::string& w : lock.warnings()) hooks.notice(w);
   for (const char* dir :
        {".", "frames", "distortion", "positions", "records", "input", "ground_truth"})
     remove_stale_temporaries(out / dir);
