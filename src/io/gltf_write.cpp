@@ -235,7 +235,6 @@ GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence&
   const GltfScene& scene = *source.scene;
   const GltfFile& file = scene.file;
   const GltfMeshGeometry& g = scene.geometry;
-  const tinygltf::Mesh& mesh = file.model.meshes[size_t(source.mesh)];
   const int frames = source.num_frames();
   const int per_mesh = std::max(1, options.frames_per_mesh);
   GlbBuilder glb;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstring>
 #include <ctime>
+#include <optional>
 #include <regex>
 #include <thread>
 
@@ -51,7 +52,7 @@ std::optional<LockHolder> parse_holder(const std::string& text) {
   static const std::regex pattern(R"(host ([^\n]+)\npid (\d{1,9})\n(?:started ([^\n]*)\n)?)");
   std::smatch m;
   if (!std::regex_search(text, m, pattern)) return std::nullopt;
-  return LockHolder{m[1], std::stol(m[2]), m[3]};
+  return LockHolder{m[1].str(), std::stol(m[2].str()), m[3].str()};
 }
 
 std::optional<LockHolder> holder_of(const fs::path& file) {

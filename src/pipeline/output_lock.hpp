@@ -26,6 +26,15 @@ struct LockHolder {
 /// ".seqmassage.lock" (the folder), or ".seqmassage-shard-I-of-N.lock" for a shard.
 std::string lock_file_name(const ShardOptions& shard);
 
+class OutputLock;
+
+/// Takes the locks of a writer into `dir` (created if missing): for a shard (shard.sharded()) its
+/// shard's lock and the folder's shared lock, otherwise the folder's exclusive lock. Throws
+/// IoError when another process holds one, naming the lock file and its holder (host, pid, since
+/// when; for the folder's lock held by shards, the shards' holders), or when the lock file cannot
+/// be created or locked. A lock file left by a holder that ended is taken over (see warnings()).
+OutputLock lock_output_folder(const std::filesystem::path& dir, const ShardOptions& shard = {});
+
 /// The locks of one process on one output folder, held until destruction, which unlocks them and
 /// removes their files (the folder's shared lock file only when no other shard holds it).
 class OutputLock {
@@ -56,12 +65,5 @@ class OutputLock {
   std::vector<Held> held_;
   std::vector<std::string> warnings_;
 };
-
-/// Takes the locks of a writer into `dir` (created if missing): for a shard (shard.sharded()) its
-/// shard's lock and the folder's shared lock, otherwise the folder's exclusive lock. Throws
-/// IoError when another process holds one, naming the lock file and its holder (host, pid, since
-/// when; for the folder's lock held by shards, the shards' holders), or when the lock file cannot
-/// be created or locked. A lock file left by a holder that ended is taken over (see warnings()).
-OutputLock lock_output_folder(const std::filesystem::path& dir, const ShardOptions& shard = {});
 
 }  // namespace sm
