@@ -1,10 +1,12 @@
 #include "pipeline/output_lock.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -76,13 +78,16 @@ bool is_current(int fd, const fs::path& path) {
 // message when the folder's lock is held shared by shards.
 std::string shard_holders(const fs::path& dir) {
   static const std::regex pattern(R"(\.seqmassage-shard-(\d+)-of-(\d+)\.lock)");
-  std::string list;
+  std::vector<std::string> names;
   std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    names.push_back(it->path().filename().string());
+  std::sort(names.begin(), names.end());
+  std::string list;
+  for (const std::string& name : names) {
     std::smatch m;
     if (!std::regex_match(name, m, pattern)) continue;
-    const std::optional<LockHolder> h = holder_of(it->path());
+    const std::optional<LockHolder> h = holder_of(dir / name);
     list += std::string(list.empty() ? "" : ", ") + "shard " + m[1].str() + "/" + m[2].str() +
             " (" + (h ? h->text() : "holder not named") + ", " + name + ")";
   }
