@@ -109,6 +109,7 @@ std::vector<fs::path> list_frames(const fs::path& dir, std::string_view extensio
     throw InputError("frame folder '" + dir.string() + "' is not a folder");
   }
   std::vector<std::pair<std::string, fs::path>> frames;
+  std::vector<std::pair<std::string, std::string>> bad;  // (name, what it is)
   fs::directory_iterator it(dir, ec);
   for (const fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
     std::string name = it->path().filename().string();
@@ -117,13 +118,22 @@ std::vector<fs::path> list_frames(const fs::path& dir, std::string_view extensio
       continue;
     }
     // Skipped, it would renumber the frames after it (template.frame, --frames, shard blocks).
-    if (const std::string kind = not_a_frame_file(*it); !kind.empty())
-      throw InputError("frame folder '" + dir.string() + "': '" + name + "' is " + kind +
-                       ", not a frame file; every " + suffix +
-                       " entry must be a regular file (or a link to one): remove it or fix it");
+    if (std::string kind = not_a_frame_file(*it); !kind.empty()) {
+      bad.emplace_back(std::move(name), std::move(kind));
+      continue;
+    }
     frames.emplace_back(std::move(name), it->path());
   }
   if (ec) throw IoError("cannot list frame folder '" + dir.string() + "': " + ec.message());
+  if (!bad.empty()) {  // the first in natural order, whatever order the folder lists them in
+    const auto first = std::min_element(bad.begin(), bad.end(), [](const auto& a, const auto& b) {
+      return natural_less(a.first, b.first);
+    });
+    throw InputError("frame folder '" + dir.string() + "': '" + first->first + "' is " +
+                     first->second + ", not a frame file; every " + suffix +
+                     " entry must be a regular file (or a link to one): remove it or fix it" +
+                     (bad.size() > 1 ? " (and " + std::to_string(bad.size() - 1) + " more)" : ""));
+  }
   if (frames.empty()) {
     throw InputError("frame folder '" + dir.string() + "' has no " + suffix + " files");
   }
