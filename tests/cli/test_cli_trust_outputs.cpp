@@ -10,6 +10,8 @@
 #include <chrono>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "io/atomic_file.hpp"
 #include "pipeline/output_lock.hpp"
 #include "pipeline/synthetic.hpp"
@@ -189,6 +191,6 @@ TEST_CASE("merge's hint for missing frames is the command that redoes their shar
     REQUIRE(
         test::run_cli(dir.path(), std::string("-q --shard ") + shard + " --resume job.json").code ==
         0);
-  CHECK(test::run_cli(dir.path(), "-q merge out").code == 0);
+  CHECK(test::run_cli(dir.path(), "merge -q out").code == 0);
   CHECK_FALSE(has_lock_file(dir / "out"));
 }
