@@ -165,7 +165,7 @@ int take(const fs::path& dir, const fs::path& file, bool exclusive, bool& unsupp
 OutputLock lock_output_folder(const fs::path& dir, const ShardOptions& shard) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) throw IoError("cannot create output folder '" + dir.string() + "': " + ec.message());
+  if (ec) throw IoError("cannot create folder '" + dir.string() + "': " + ec.message());
   const std::string host = this_host();
   const long self = static_cast<long>(::getpid());
   OutputLock lock;
