@@ -53,7 +53,9 @@ Exit status:
   3    input error: a malformed frame, template or glTF file (the message names the glTF
        element), frames with different vertex counts or faces; for merge, missing,
        incomplete or inconsistent shards (named, with the frames concerned)
-  4    I/O error: a file or folder cannot be read or written
+  4    I/O error: a file or folder cannot be read or written; or another run holds the
+       output folder's lock (.seqmassage.lock; a shard's .seqmassage-shard-I-of-N.lock), the
+       message names its host and pid
   5    processing error: some frames failed (the optimizer failed, non-finite positions, or
        more folded triangles than "checks" allow; reason in summary.csv and on stderr); they
        are written unchanged (or not at all: "output": {"on_failure": "skip"}) and the other
@@ -62,8 +64,10 @@ Exit status:
   130  interrupted (Ctrl-C, SIGINT): the frames in flight were finished; the frames done are
        written and listed in summary.csv; --resume continues
   143  terminated (SIGTERM, as schedulers send): the same as 130
-A second SIGINT or SIGTERM ends the program at once; like SIGKILL, it leaves complete files
-only, and --resume continues.
+  129  hung up (SIGHUP: the terminal or ssh session closed): the same as 130
+A second SIGINT, SIGTERM or SIGHUP ends the program at once; like SIGKILL, it leaves complete
+files only, and --resume continues. SIGPIPE is ignored: with stderr or stdout closed (piped into
+'head'), the run goes on and its outputs complete.
 )";
 
 const char* const kMergeHelp = R"(Usage: seqmassage merge [options] OUTPUT_DIR
@@ -80,8 +84,8 @@ are left in place.
 )";
 
 const char* const kMergeHelpFooter = R"(Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
-the command that redoes them), nothing written; 4 I/O error; 5 merged, but some frames failed
-(as for a run).
+the command that redoes them), nothing written; 4 I/O error, or a shard or run still holds the
+folder's lock; 5 merged, but some frames failed (as for a run).
 )";
 
 const char* const kMeasureHelp = R"(Usage: seqmassage measure [options] MESH REFERENCE

@@ -17,6 +17,7 @@
 
 #include "cli/arguments.hpp"
 #include "cli/help.hpp"
+#include "cli/signals.hpp"
 #include "config/config.hpp"
 #include "config/reference.hpp"
 #include "mesh/errors.hpp"
@@ -40,9 +41,7 @@ enum ExitCode : int {
   kInput = 3,
   kIo = 4,
   kProcessing = 5,
-  kInterrupted = 130,  // 128 + SIGINT
-  kTerminated = 143,   // 128 + SIGTERM
-};
+};  // a run stopped by a signal: 128 + its number (sm::cli::stopped_exit_code)
 
 using sm::cli::UsageError;
 
@@ -122,28 +121,6 @@ Args parse_args(int argc, char** argv) {
   return out;
 }
 
-std::atomic<bool> g_interrupted{false};
-volatile std::sig_atomic_t g_signal = 0;  // the first SIGINT or SIGTERM received
-
-extern "C" void on_stop_signal(int sig) {
-  if (g_signal == 0) g_signal = sig;
-  g_interrupted.store(true);
-  // A second one ends the program at once (the default action): files stay complete anyway.
-  struct sigaction dfl {};
-  dfl.sa_handler = SIG_DFL;
-  ::sigaction(SIGINT, &dfl, nullptr);
-  ::sigaction(SIGTERM, &dfl, nullptr);
-}
-
-// Installs (or, with `on` false, removes) the SIGINT and SIGTERM handler.
-void catch_stop_signals(bool on) {
-  struct sigaction action {};
-  action.sa_handler = on ? on_stop_signal : SIG_DFL;
-  sigemptyset(&action.sa_mask);
-  ::sigaction(SIGINT, &action, nullptr);
-  ::sigaction(SIGTERM, &action, nullptr);
-}
-
 std::string shown(const fs::path& p) {
   std::error_code ec;
   const fs::path rel = fs::proximate(p, ec);
@@ -213,13 +190,16 @@ int run(const Args& args) {
 
   Progress progress(args.quiet, ::isatty(STDERR_FILENO) == 1, plan.config.output.on_failure);
   sm::RunHooks hooks;
-  hooks.cancel = &g_interrupted;
+  hooks.cancel = &sm::cli::stop_requested();
+  hooks.notice = [&](const std::string& w) {
+    if (!args.quiet) std::cerr << "seqmassage: warning: " << w << "\n";
+  };
   hooks.progress = [&](const sm::FrameSummary& f, int done, int total, double elapsed) {
     progress.frame(f, done, total, elapsed);
   };
-  catch_stop_signals(true);
+  sm::cli::catch_stop_signals(true);
   const sm::SequenceResult result = sm::run_sequence_job(plan, hooks);
-  catch_stop_signals(false);
+  sm::cli::catch_stop_signals(false);
   progress.clear();
 
   const fs::path& out = plan.config.output.dir;
@@ -232,11 +212,12 @@ int run(const Args& args) {
       std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }
   if (result.interrupted) {
-    std::cerr << "seqmassage: " << (g_signal == SIGTERM ? "terminated (SIGTERM)" : "interrupted")
-              << " after " << result.frames.size() << " of " << plan.run_frames.size()
+    const int sig = sm::cli::stop_signal();
+    std::cerr << "seqmassage: " << sm::cli::stopped_text(sig) << " after " << result.frames.size()
+              << " of " << plan.run_frames.size()
               << " frames; they are written and listed in " << shown(out / summary)
               << "; run again with --resume to finish\n";
-    return g_signal == SIGTERM ? kTerminated : kInterrupted;
+    return sm::cli::stopped_exit_code(sig);
   }
   if (result.failed > 0) {
     std::cerr << "seqmassage: " << result.failed << " of " << result.frames.size()
@@ -339,6 +320,8 @@ int run_merge_command(int argc, char** argv) {
                      "expected one output folder, got " + std::to_string(positional.size())};
   const fs::path dir = positional[0];
   const sm::MergeResult result = sm::merge_shards(dir);
+  for (const std::string& w : result.notices)
+    if (!quiet) std::cerr << "seqmassage: warning: " << w << "\n";
   if (!quiet) {
     std::cerr << "seqmassage: merged " << result.shards << " shards, " << result.frames.size()
               << " frames (" << result.failed << " failed)\n";
@@ -394,6 +377,9 @@ int main(int argc, char** argv) {
   // removes it without raising peak memory (docs/performance.md has the figures).
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  // A closed stderr or stdout (piped into `head`) must not end a run: its writes fail, the
+  // outputs still complete.
+  sm::cli::ignore_broken_pipes();
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "merge") return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
   if (command == "config")

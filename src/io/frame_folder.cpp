@@ -55,6 +55,40 @@ bool ends_with_folded(std::string_view name, std::string_view suffix) {
   return true;
 }
 
+// What a directory entry that is not a regular file (nor a link to one) is, or "" if it is one.
+std::string not_a_frame_file(const fs::directory_entry& entry) {
+  std::error_code ec;
+  const fs::file_status own = entry.symlink_status(ec);
+  if (ec) return "unreadable (" + ec.message() + ")";
+  const bool link = fs::is_symlink(own);
+  const fs::file_status target = link ? fs::status(entry.path(), ec) : own;
+  if (link && ec) {
+    std::error_code read_ec;
+    const fs::path to = fs::read_symlink(entry.path(), read_ec);
+    const std::string where = read_ec ? "" : " (to '" + to.string() + "')";
+    if (ec == std::errc::too_many_symbolic_link_levels) return "a symbolic link loop" + where;
+    if (ec == std::errc::no_such_file_or_directory) return "a dangling symbolic link" + where;
+    return "a symbolic link that cannot be followed" + where + ": " + ec.message();
+  }
+  const std::string via = link ? "a symbolic link to " : "";
+  switch (target.type()) {
+    case fs::file_type::regular:
+      return "";
+    case fs::file_type::directory:
+      return via + "a folder";
+    case fs::file_type::fifo:
+      return via + "a FIFO (named pipe)";
+    case fs::file_type::socket:
+      return via + "a socket";
+    case fs::file_type::character:
+      return via + "a character device";
+    case fs::file_type::block:
+      return via + "a block device";
+    default:
+      return via + "not a regular file";
+  }
+}
+
 }  // namespace
 
 bool natural_less(std::string_view a, std::string_view b) {
@@ -75,6 +109,7 @@ std::vector<fs::path> list_frames(const fs::path& dir, std::string_view extensio
     throw InputError("frame folder '" + dir.string() + "' is not a folder");
   }
   std::vector<std::pair<std::string, fs::path>> frames;
+  std::vector<std::pair<std::string, std::string>> bad;  // (name, what it is)
   fs::directory_iterator it(dir, ec);
   for (const fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
     std::string name = it->path().filename().string();
@@ -82,11 +117,23 @@ std::vector<fs::path> list_frames(const fs::path& dir, std::string_view extensio
         !ends_with_folded(name, suffix)) {
       continue;
     }
-    std::error_code type_ec;
-    if (!it->is_regular_file(type_ec)) continue;
+    // Skipped, it would renumber the frames after it (template.frame, --frames, shard blocks).
+    if (std::string kind = not_a_frame_file(*it); !kind.empty()) {
+      bad.emplace_back(std::move(name), std::move(kind));
+      continue;
+    }
     frames.emplace_back(std::move(name), it->path());
   }
   if (ec) throw IoError("cannot list frame folder '" + dir.string() + "': " + ec.message());
+  if (!bad.empty()) {  // the first in natural order, whatever order the folder lists them in
+    const auto first = std::min_element(bad.begin(), bad.end(), [](const auto& a, const auto& b) {
+      return natural_less(a.first, b.first);
+    });
+    throw InputError("frame folder '" + dir.string() + "': '" + first->first + "' is " +
+                     first->second + ", not a frame file; every " + suffix +
+                     " entry must be a regular file (or a link to one): remove it or fix it" +
+                     (bad.size() > 1 ? " (and " + std::to_string(bad.size() - 1) + " more)" : ""));
+  }
   if (frames.empty()) {
     throw InputError("frame folder '" + dir.string() + "' has no " + suffix + " files");
   }

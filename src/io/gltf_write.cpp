@@ -146,24 +146,32 @@ void check_frame(const fs::path& out, const GltfSequence& source, int k, const P
   if (!W.allFinite()) fail("has a coordinate that is not finite");
 }
 
-}  // namespace
+// What the GLB takes over from the source once: its primitives' attributes that do not move
+// (texture coordinates, colours), indices and materials, its normals and tangents, its images.
+// Everything about the source that writing can refuse is refused here (write_gltf_sequence and,
+// before anything is written, check_gltf_sequence_source).
+struct SourceParts {
+  std::vector<SourcePrimitive> prims;
+  Positions source_normals;
+  Tangents source_tangents;
+  bool any_normals = false;
+  json images;
+};
 
-GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence& source,
-                                    const GltfFrameSource& corrected_frame,
-                                    const GltfWriteOptions& options) {
+SourceParts copy_source(GlbBuilder& glb, const GltfSequence& source,
+                        const GltfWriteOptions& options) {
   const GltfScene& scene = *source.scene;
   const GltfFile& file = scene.file;
   const GltfMeshGeometry& g = scene.geometry;
   const tinygltf::Mesh& mesh = file.model.meshes[size_t(source.mesh)];
-  const int frames = source.num_frames();
-  const int per_mesh = std::max(1, options.frames_per_mesh);
-  GlbBuilder glb;
-
-  // Source attributes that do not move (texture coordinates, colours) are copied once.
-  std::vector<SourcePrimitive> prims(mesh.primitives.size());
-  Positions source_normals = Positions::Zero(g.num_vertices(), 3);
-  Tangents source_tangents = Tangents::Zero(g.num_vertices(), 4);
-  bool any_normals = false;
+  SourceParts parts;
+  std::vector<SourcePrimitive>& prims = parts.prims;
+  Positions& source_normals = parts.source_normals;
+  Tangents& source_tangents = parts.source_tangents;
+  bool& any_normals = parts.any_normals;
+  prims.resize(mesh.primitives.size());
+  source_normals = Positions::Zero(g.num_vertices(), 3);
+  source_tangents = Tangents::Zero(g.num_vertices(), 4);
   for (size_t p = 0; p < prims.size(); ++p) {
     SourcePrimitive& sp = prims[p];
     sp.prim = &mesh.primitives[p];
@@ -210,7 +218,33 @@ GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence&
         source_tangents(sp.range.first_vertex + v, c) = t.at(v, c);
     }
   }
-  json images = copy_images(glb, file);
+  parts.images = copy_images(glb, file);
+  return parts;
+}
+
+}  // namespace
+
+void check_gltf_sequence_source(const GltfSequence& source, const GltfWriteOptions& options) {
+  GlbBuilder glb;
+  copy_source(glb, source, options);
+}
+
+GltfWriteReport write_gltf_sequence(const fs::path& out_glb, const GltfSequence& source,
+                                    const GltfFrameSource& corrected_frame,
+                                    const GltfWriteOptions& options) {
+  const GltfScene& scene = *source.scene;
+  const GltfFile& file = scene.file;
+  const GltfMeshGeometry& g = scene.geometry;
+  const int frames = source.num_frames();
+  const int per_mesh = std::max(1, options.frames_per_mesh);
+  GlbBuilder glb;
+
+  SourceParts parts = copy_source(glb, source, options);
+  const std::vector<SourcePrimitive>& prims = parts.prims;
+  const Positions& source_normals = parts.source_normals;
+  const Tangents& source_tangents = parts.source_tangents;
+  const bool any_normals = parts.any_normals;
+  json& images = parts.images;
 
   const size_t per_frame = size_t(g.num_vertices()) * 4 * (any_normals ? 9 : 3);
   glb.reserve(glb.binary_size() + per_frame * size_t(frames + frames / per_mesh + 1) +

@@ -47,6 +47,11 @@ struct GltfWriteReport {
 /// Returns the corrected positions of frame k on the welded vertices (rest.num_vertices() × 3).
 using GltfFrameSource = std::function<Positions(int frame)>;
 
+/// Throws the InputError that write_gltf_sequence would throw for `source` itself (an image of
+/// unknown format, a missing material, unreadable NORMAL or TANGENT accessors), so that planning
+/// refuses it before any output is written. Memory: a copy of the attributes and images it takes.
+void check_gltf_sequence_source(const GltfSequence& source, const GltfWriteOptions& options = {});
+
 /// Writes `out_glb` atomically. `corrected_frame` is called once per frame, in order 0, 1, ...,
 /// so frames can be produced or read back one at a time; corrected positions are written to every
 /// split copy of a welded vertex. Memory: the GLB's binary data (about 4·(3 + 3 + 3)·n bytes per

@@ -1,5 +1,7 @@
+#include "pipeline/output_lock.hpp"
 #include "pipeline/merge.hpp"
 
+#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
@@ -269,13 +271,17 @@ void verify_records(const Shards& s, const std::vector<int>& selected,
     rows += r->iterations_csv;
   }
   if (bad_frames.empty()) return;
-  std::set<std::string> files;
-  for (int f : bad_frames) files.insert(owner.count(f) ? owner[f] : "?");
+  std::set<int> redo;  // every selected frame is in one shard's block
+  for (int i = 0; i < s.count; ++i)
+    for (int f : shard_frames(selected, {i, s.count}))
+      if (std::find(bad_frames.begin(), bad_frames.end(), f) != bad_frames.end()) redo.insert(i);
   std::string rerun;
-  for (const std::string& file : files) rerun += (rerun.empty() ? "" : ", ") + file;
+  for (int i : redo)
+    rerun += (rerun.empty() ? "" : "; ") + std::string("seqmassage --shard ") +
+             format_shard({i, s.count}) + " --resume CONFIG";
   problems.push_back("missing or incomplete frames: " + describe_frames(bad_frames, s.names) +
-                     " (first: " + first_bad + "); run their shards again with --resume (" +
-                     rerun + ")");
+                     " (first: " + first_bad + "); run " +
+                     (redo.size() == 1 ? "its shard" : "their shards") + " again: " + rerun);
 }
 
 // The whole run's outputs: every output's finish over the merged frames, summary.csv and
@@ -328,6 +334,12 @@ void assemble(const Shards& s, const std::string& rows, MergeResult& result) {
 }  // namespace
 
 MergeResult merge_shards(const fs::path& output_dir) {
+  std::error_code ec;
+  if (!fs::is_directory(output_dir, ec))
+    throw IoError("cannot open folder '" + output_dir.string() +
+                  "': " + (fs::exists(output_dir, ec) ? "not a folder" : "no such folder"));
+  // The folder's exclusive lock: no shard (nor a whole run) writes while merge reads and writes.
+  const OutputLock lock = lock_output_folder(output_dir);
   Shards shards = find_shards(output_dir);
   verify_same_job(shards);
   const std::vector<int> selected =
@@ -342,9 +354,11 @@ MergeResult merge_shards(const fs::path& output_dir) {
     std::string text = "'" + shards.dir.string() + "': cannot merge " +
                        std::to_string(shards.count) + " shards:";
     for (const std::string& p : problems) text += "\n  " + p;
-    throw InputError(text);
+    throw InputError(text + "\n(CONFIG: the config file the shards ran; then merge again: " +
+                     "seqmassage merge " + output_dir.string() + ")");
   }
   assemble(shards, rows, result);
+  result.notices = lock.warnings();
   return result;
 }
 

@@ -16,9 +16,11 @@ struct MergeResult {
   int failed = 0;                     ///< frames with status "failed"
   std::vector<std::string> warnings;  ///< report.json's
   std::vector<std::string> written;   ///< files written, relative to the output folder
+  std::vector<std::string> notices;   ///< not in report.json: a lock file taken over
 };
 
-/// Merges the shards in `output_dir`: reads every report.shard-I-of-N.json, checks that all N
+/// Merges the shards in `output_dir`, holding its lock (lock_output_folder: IoError while a shard
+/// or another run writes there): reads every report.shard-I-of-N.json, checks that all N
 /// shards are there, complete, and ran the same job (config apart from threads and
 /// frames_in_flight, template, program version: their hashes and the reports' config), that
 /// their frames are the selection's blocks (none missing, none twice), and that every frame's

@@ -16,6 +16,7 @@
 #include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/mesh_report.hpp"
+#include "pipeline/output_lock.hpp"
 #include "pipeline/run_text.hpp"
 
 namespace sm {
@@ -225,6 +226,8 @@ MeshJobResult run_mesh_job(const MeshJobPlan& plan) {
   const fs::path& out = c.output.dir;
   MeshJobResult result;
   result.warnings = plan.warnings;
+  const OutputLock lock = lock_output_folder(out);  // one writer per output folder
+  for (const std::string& w : lock.warnings()) result.warnings.push_back(w);
   remove_stale_temporaries(out);
 
   TriangleMeasures triangles_before, triangles_after;

@@ -61,7 +61,8 @@ MeshJobPlan plan_mesh_job(const MeshJobOptions& config);
 /// What a run of `plan` would do, several lines of text (for --dry-run).
 std::string describe_mesh_plan(const MeshJobPlan& plan);
 
-/// Runs the job and writes its outputs. A numerical failure of the optimizer is recorded in the
+/// Runs the job and writes its outputs, holding the output folder's lock (lock_output_folder:
+/// IoError if another run holds it). A numerical failure of the optimizer is recorded in the
 /// result (no mesh is written then; measures.csv holds the "before" row and report.json the
 /// reason), not thrown. Same plan, same output bytes (apart from timings) for any thread count.
 MeshJobResult run_mesh_job(const MeshJobPlan& plan);

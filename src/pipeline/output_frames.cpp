@@ -73,6 +73,8 @@ GlbFramesOutput::GlbFramesOutput(const OutputContext& context)
       source_(context.source),
       gltf_(context.gltf ? context.gltf() : nullptr) {
   if (!gltf_) throw ConfigError("output.format: \"gltf\" needs a glTF input (input.gltf)");
+  // Refuses, at planning, what the GLB could not be assembled from (sequence.glb is written last).
+  check_gltf_sequence_source(*gltf_, config_.output.gltf);
 }
 
 bool GlbFramesOutput::enabled(const SequenceJobOptions& config) {

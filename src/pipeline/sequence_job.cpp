@@ -11,6 +11,7 @@
 #include "mesh/timing.hpp"
 #include "pipeline/frame_output.hpp"
 #include "pipeline/frame_processor.hpp"
+#include "pipeline/output_lock.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
@@ -295,6 +296,11 @@ class SequenceRun {
 }  // namespace
 
 SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks) {
+  // One writer per output folder and shard, for the whole run (released when this returns or
+  // throws). Its warnings are not the run's: a resumed run writes what an uninterrupted one does.
+  const OutputLock lock = lock_output_folder(plan.config.output.dir, plan.config.shard);
+  if (hooks.notice)
+    for (const std::string& w : lock.warnings()) hooks.notice(w);
   return SequenceRun(plan, hooks).run();
 }
 

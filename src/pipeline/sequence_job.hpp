@@ -38,6 +38,9 @@ struct RunHooks {
   /// When it becomes true, no further frame is started; frames in flight are finished and
   /// written, then summary.csv and report.json record the interruption.
   const std::atomic<bool>* cancel = nullptr;
+  /// Called with warnings about the run that are not the job's (not in report.json): a lock file
+  /// taken over from a run that ended without removing it.
+  std::function<void(const std::string& warning)> notice;
 };
 
 /// Checks the config and every input before anything runs: lists the frames (or loads and welds
@@ -51,7 +54,8 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config);
 /// What a run of `plan` would do, several lines of text (for --dry-run).
 std::string describe_plan(const SequencePlan& plan);
 
-/// Runs the job: writes the synthetic input (if any), then per frame frames/<name>.obj (or
+/// Runs the job: takes the output folder's lock (lock_output_folder: IoError if another run
+/// holds it), writes the synthetic input (if any), then per frame frames/<name>.obj (or
 /// positions/<name>.bin, assembled into sequence.glb at the end), distortion/<name>.csv (if asked)
 /// and its record records/<name>.json, then summary.csv and report.json (named by shard for a
 /// shard) under config.output.dir, each file atomically. With config.resume, a frame whose record

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -71,6 +72,38 @@ void check_outputs(const SequencePlan& plan) {
 
 }  // namespace
 
+// Refuses two selected frames whose outputs would have the same name, letter case aside (a.obj
+// and a.OBJ both write records/a.json): one would overwrite the other, which one varying from run
+// to run, on any file system, and on a case-insensitive one (macOS, Windows shares) also their
+// frames/ files.
+void check_output_names(const SequencePlan& plan) {
+  const auto folded = [](const fs::path& p) {
+    std::string s = p.generic_string();
+    for (char& ch : s)
+      if (ch >= 'A' && ch <= 'Z') ch = static_cast<char>(ch - 'A' + 'a');
+    return s;
+  };
+  const auto label = [&](int i) {
+    return frame_label(i, plan.source->name(i), std::nullopt);
+  };
+  std::map<std::string, int> writer;  // folded output name -> frame
+  for (int index : plan.selected) {
+    const std::string name = plan.source->name(index);
+    std::vector<fs::path> files = {fs::path("records") / fs::path(name).replace_extension(".json")};
+    for (const auto& output : plan.outputs)
+      for (const fs::path& file : output->files({index}))
+        files.push_back(file.lexically_relative(plan.config.output.dir));
+    for (const fs::path& file : files) {
+      const auto [at, fresh] = writer.emplace(folded(file), index);
+      if (fresh || at->second == index) continue;
+      throw InputError("frames " + label(at->second) + " and " + label(index) +
+                       " would both write " + file.generic_string() +
+                       " (their output names differ only in letter case or extension): one "
+                       "would overwrite the other; rename one of them");
+    }
+  }
+}
+
 SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
   SequencePlan plan;
   plan.config = config;
@@ -84,6 +117,7 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
   const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
   plan.run_frames = shard_frames(plan.selected, c.shard);
+  check_output_names(plan);
   for (const auto& output : plan.outputs)
     for (std::string& warning : output->check(plan.selected))
       plan.warnings.push_back(std::move(warning));

@@ -82,6 +82,8 @@ int require_complete_files(const fs::path& out, int vertices) {
         const FrameRecord r = frame_record_from_json(j);
         CHECK(check_recorded_outputs(r, out, true) == "");
       }
+    } else if (ext == ".lock") {  // the killed run's lock file: host and pid, taken over next
+      CHECK(p.filename().string().rfind(".seqmassage", 0) == 0);
     } else {
       FAIL("unexpected file");
     }

@@ -151,7 +151,7 @@ TEST_CASE("merge names missing shards, missing frames and shards of another job"
   CHECK_THAT(e, Contains("cannot merge 3 shards:"));
   CHECK_THAT(e, Contains("missing or incomplete frames: frames 4 (frame_0004.obj) to 5 "
                          "(frame_0005.obj) (first: frame 4 (frame_0004.obj): no record); run "
-                         "their shards again with --resume (report.shard-1-of-3.json)"));
+                         "its shard again: seqmassage --shard 1/3 --resume CONFIG"));
 
   // A resumed shard repairs it.
   c.shard = {1, 3};
