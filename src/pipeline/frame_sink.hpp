@@ -58,9 +58,20 @@ class FrameSink {
 /// from which sequence.glb is assembled when the run ends (assemble_sequence_glb), so that memory
 /// holds the frames in flight and the GLB being assembled, never all frames as well. A shard of a
 /// sharded run (config.shard) writes the positions only; `seqmassage merge` assembles the GLB.
+/// "pc2" and "mdd" write the same positions files, from which sequence.pc2 / sequence.mdd and
+/// rest.obj are assembled (assemble_point_cache, pipeline/point_cache_output.hpp).
 /// Throws ConfigError for "gltf" with a source that is not a glTF animation.
 std::shared_ptr<const FrameSink> make_frame_sink(const SequenceJobOptions& config,
                                                  std::shared_ptr<const FrameSource> source);
+
+/// positions/<frame name>.bin, relative to output.dir: a frame's corrected positions (exact
+/// little-endian doubles, n×3 row-major) from which a whole-sequence output is assembled.
+std::filesystem::path positions_file(const std::string& frame_name);
+
+/// Frame `index`'s positions file under `output_dir`, read back (n vertices). Throws IoError when
+/// it is missing or has the wrong size.
+Positions read_frame_positions(const std::filesystem::path& output_dir, const FrameSource& source,
+                               int index, Eigen::Index n);
 
 /// Writes output.dir/sequence.glb (see write_gltf_sequence) of the frames `frames` (in order) of
 /// `source`, a glTF animation, from their positions files. Returns warnings (none, or that no frame

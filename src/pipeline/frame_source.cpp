@@ -9,6 +9,7 @@
 #include "io/gltf_scene.hpp"
 #include "io/sha256.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/point_cache_source.hpp"
 #include "pipeline/synthetic.hpp"
 
 namespace sm {
@@ -252,6 +253,8 @@ std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& c
   const InputOptions& in = config.input;
   if (in.synthetic) return std::make_shared<SyntheticSource>(*in.synthetic, config.output.dir);
   if (in.gltf) return std::make_shared<GltfSource>(*in.gltf);
+  if (const std::optional<PointCacheInput> cache = in.point_cache())
+    return make_point_cache_source(*cache);
   return std::make_shared<ObjFolderSource>(in.frames);
 }
 

@@ -73,9 +73,11 @@ class FrameSource {
   /// The glTF sequence the frames are evaluated from (for an output that rebuilds the source
   /// asset), or null.
   virtual const GltfSequence* gltf() const { return nullptr; }
+  /// The header of the point cache the frames are read from (PC2, MDD), or null.
+  virtual const PointCacheHeader* point_cache() const { return nullptr; }
 };
 
-/// The source of the config's input ("frames", "synthetic" or "gltf"). A glTF file is loaded,
+/// The source of the config's input ("frames", "synthetic", "gltf", "pc2" or "mdd"). A glTF file is loaded,
 /// welded and checked here; other sources list or generate nothing yet. Throws like the loaders:
 /// IoError, InputError naming the file and element, ConfigError for invalid values.
 std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config);

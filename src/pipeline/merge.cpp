@@ -11,6 +11,7 @@
 #include "pipeline/frame_record.hpp"
 #include "pipeline/frame_sink.hpp"
 #include "pipeline/iteration_log.hpp"
+#include "pipeline/point_cache_output.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
 
@@ -290,6 +291,18 @@ MergeResult merge_shards(const fs::path& output_dir) {
     for (std::string& w : assemble_sequence_glb(whole, *input_source(), with_output))
       result.warnings.push_back(std::move(w));
     result.written.push_back("sequence.glb");
+  }
+  if (const std::optional<PointCacheFormat> cache = point_cache_format(config.output.format)) {
+    SequenceJobOptions whole = config;
+    whole.output.dir = dir;
+    std::vector<int> with_output;  // as for the GLB: a skipped failed frame is left out (MDD)
+    for (const FrameSummary& f : result.frames)
+      if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip))
+        with_output.push_back(f.frame);
+    for (std::string& w : assemble_point_cache(whole, *input_source(), with_output))
+      result.warnings.push_back(std::move(w));
+    result.written.push_back(point_cache_file_name(*cache).string());
+    result.written.push_back("rest.obj");
   }
   if (config.output.iterations.enabled) {
     write_file_atomic(dir / "iterations.csv",

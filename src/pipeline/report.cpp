@@ -7,6 +7,7 @@
 
 #include "io/csv.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/point_cache_output.hpp"
 #include "pipeline/report_json.hpp"
 #include "pipeline/shard.hpp"
 
@@ -253,6 +254,12 @@ std::vector<std::string> run_output_names(const SequencePlan& plan, const Sequen
   if (c.output.format == OutputFormat::Gltf) {
     names.push_back("positions/");
     if (!c.shard.sharded()) names.push_back("sequence.glb");
+  } else if (const std::optional<PointCacheFormat> cache = point_cache_format(c.output.format)) {
+    names.push_back("positions/");
+    if (!c.shard.sharded()) {
+      names.push_back(point_cache_file_name(*cache).string());
+      names.push_back("rest.obj");
+    }
   } else {
     names.push_back("frames/");
   }

@@ -2,7 +2,8 @@
 /// The sequence job (paper §3.1): every frame of a mesh sequence is massaged towards the triangle
 /// shapes of a template frame while it stays on its own surface, streamed through a bounded TBB
 /// pipeline (read in order → decode, optimize, measure and encode in parallel → write in order)
-/// from a FrameSource (OBJ folder, synthetic, glTF) to a FrameSink (OBJ frames, GLB).
+/// from a FrameSource (OBJ folder, synthetic, glTF, point cache) to a FrameSink (OBJ frames, GLB,
+/// point cache).
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -122,7 +123,8 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config);
 std::string describe_plan(const SequencePlan& plan);
 
 /// Runs the job: writes the synthetic input (if any), then per frame frames/<name>.obj (or
-/// positions/<name>.bin, assembled into sequence.glb at the end), distortion/<name>.csv (if asked)
+/// positions/<name>.bin, assembled into sequence.glb, or sequence.pc2 / .mdd and rest.obj, at the
+/// end), distortion/<name>.csv (if asked)
 /// and its record records/<name>.json, then summary.csv and report.json (named by shard for a
 /// shard) under config.output.dir, each file atomically. With config.resume, a frame whose record
 /// is current (same config hash, template hash and input hash; outputs present with their size
