@@ -47,6 +47,7 @@
 
 #include "cli/arguments.hpp"
 #include "geometry/distance.hpp"
+#include "geometry/distance_meter.hpp"
 #include "geometry/shear.hpp"
 #include "io/atomic_file.hpp"
 #include "io/frame_folder.hpp"
@@ -54,6 +55,7 @@
 #include "io/sha256.hpp"
 #include "massage/massage.hpp"
 #include "mesh/timing.hpp"
+#include "pipeline/output_distortion.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/sequence_options.hpp"
 
@@ -177,8 +179,9 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const TriMesh templ = read_obj(frames.front()).mesh;
   const MassageOptions options;
   const Massager massager(templ, options, "template");
-  const DistanceLayout layout(templ.F, templ.num_vertices());  // as the job's plan
-  DistanceWorkspace work;                                      // as the job's pool
+  // As the job's frame processor: layout built once, workspace pooled.
+  const DistanceMeter meter(templ.F, templ.num_vertices(), massager.shared_topology(),
+                            default_sequence_measures());
   const double setup = thread_seconds() - t_setup;
   double read = 0, optimize = 0, measure = 0, write = 0, hash = 0, shear = 0, distance = 0;
   double hashed = 0;  // bytes
@@ -204,18 +207,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     const Eigen::VectorXd after = shear_distortion(templ.V, result.V, templ.F);
     const DistortionSummary sb = summarize_distortion(before), sa = summarize_distortion(after);
     const double t_shear = (thread_seconds() - t0);
-    const TriMesh output{result.V, templ.F};
-    const Topology& topology = massager.topology();
-    const DistanceOptions sampling = default_sequence_measures();  // the job's "measures"
-    const DistanceStats out_to_in = one_sided_distance(
-        output, reference.bvh(), sampling, &reference.planes(), &topology, &layout, &work);
-    TriangleBvh& output_bvh = work.bvh;  // as the job does
-    output_bvh = reference.bvh();
-    output_bvh.refit(result.V);
-    TrianglePlanes& output_planes = work.planes;
-    output_planes.update(result.V, templ.F, &topology);
-    const DistanceStats in_to_out = one_sided_distance(file.mesh, output_bvh, sampling,
-                                                       &output_planes, &topology, &layout, &work);
+    const FrameDistances distances =
+        meter.measure(file.mesh, reference.bvh(), reference.planes(), result.V);
     measure += (thread_seconds() - t0);
     shear += t_shear;
     distance += (thread_seconds() - t0) - t_shear;
@@ -236,8 +229,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     std::printf(
         "  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
         "in->out max %.3e rms %.3e | %d its\n",
-        frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, out_to_in.max,
-        out_to_in.rms, in_to_out.max, in_to_out.rms, static_cast<int>(result.iterations.size()));
+        frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, distances.moved_to_original.max,
+        distances.moved_to_original.rms, distances.original_to_moved.max, distances.original_to_moved.rms, static_cast<int>(result.iterations.size()));
   }
   const double total = read + optimize + measure + write + hash;
   std::printf(

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "geometry/distance.hpp"
+#include "geometry/distance_meter.hpp"
 #include "geometry/shear.hpp"
 #include "io/frame_folder.hpp"
 #include "io/obj.hpp"
@@ -88,19 +89,9 @@ struct FramePair {
 };
 
 FramePair measure(const TriMesh& input, const Reference& reference, const Positions& V,
-                  const Topology& topology, const DistanceOptions& options,
-                  const DistanceLayout* layout = nullptr, DistanceWorkspace* work = nullptr) {
-  FramePair d;
-  const TriMesh output{V, input.F};
-  d.out_to_in = one_sided_distance(output, reference.bvh(), options, &reference.planes(), &topology,
-                                   layout, work);
-  DistanceWorkspace own;  // as the job does: the output's BVH and frames in the workspace
-  DistanceWorkspace& w = work ? *work : own;
-  w.bvh = reference.bvh();
-  w.bvh.refit(V);
-  w.planes.update(V, input.F, &topology);
-  d.in_to_out = one_sided_distance(input, w.bvh, options, &w.planes, &topology, layout, &w);
-  return d;
+                  const DistanceMeter& meter) {
+  const FrameDistances d = meter.measure(input, reference.bvh(), reference.planes(), V);
+  return {d.moved_to_original, d.original_to_moved};
 }
 
 // Every triangle of `mesh` cut into k² similar ones (each with its own corners): the same
@@ -156,8 +147,10 @@ void spacing_table(const fs::path& dir) {
   const size_t nv = variants.size();
   std::vector<double> seconds(nv, 0.0), samples(nv, 0.0), refined(nv, 0.0);
   // Built once per connectivity, as the sequence job does.
-  const DistanceLayout layout(seq.templ.F, seq.templ.num_vertices());
-  DistanceWorkspace work;
+  std::vector<DistanceMeter> meters;
+  for (const Variant& v : variants)
+    meters.emplace_back(seq.templ.F, seq.templ.num_vertices(), massager.shared_topology(),
+                        v.options);
   // Per variant: relative deviations of max and RMS from the reference, both directions.
   std::vector<double> max_dev(nv, 0.0), max_dev_sum(nv, 0.0), rms_dev(nv, 0.0),
       rms_dev_sum(nv, 0.0), max_low(nv, 0.0), area_dev(nv, 0.0), area_dev_sum(nv, 0.0);
@@ -173,8 +166,7 @@ void spacing_table(const fs::path& dir) {
     std::vector<FramePair> pairs(nv);
     for (size_t v = 0; v < nv; ++v) {
       const double t0 = thread_seconds();
-      pairs[v] = measure(input, reference, result.V, massager.topology(), variants[v].options,
-                         &layout, &work);
+      pairs[v] = measure(input, reference, result.V, meters[v]);
       seconds[v] += thread_seconds() - t0;
       samples[v] += double(pairs[v].out_to_in.samples + pairs[v].in_to_out.samples);
       refined[v] += double(pairs[v].out_to_in.refined + pairs[v].in_to_out.refined);
@@ -289,8 +281,9 @@ void iterations_table(const fs::path& dir, const std::vector<int>& counts,
       p95 += s.p95;
       max_mean += s.max;
       max_max = std::max(max_max, s.max);
-      const FramePair d =
-          measure(input, reference, result.V, massager.topology(), reference_sampling);
+      const FramePair d = measure(input, reference, result.V,
+                                  DistanceMeter(input.F, input.num_vertices(),
+                                                massager.shared_topology(), reference_sampling));
       oi_max = std::max(oi_max, d.out_to_in.max);
       io_max = std::max(io_max, d.in_to_out.max);
       oi_rms += d.out_to_in.rms;

@@ -19,6 +19,7 @@
 #include "config/config.hpp"
 #include "config/reference.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/measure_files.hpp"
 #include "pipeline/merge.hpp"
 #include "pipeline/mesh_job.hpp"
@@ -66,26 +67,16 @@ by its "job" key:
   smooth      evens out the triangles while keeping the surface and its sharp features (section 4)
 )";
 
-constexpr const char* kHelpFooter = R"(Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
+// The footer's outputs of a sequence come from the output registry (sm::outputs_help), between
+// these two parts.
+constexpr const char* kHelpInputs = R"(Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
 with "mesh", "animation" and "fps"), a PC2 or MDD point cache on a mesh ("pc2" or "mdd", with
 "mesh": its OBJ, PLY or OFF), or a generated sequence ("synthetic").
 
 Outputs of a sequence, under "output.dir":
-  frames/<input name>.obj     the corrected frames ("format": "obj", the default)
-  positions/<frame>.bin, sequence.glb
-                              with "format": "gltf" (glTF input): each frame's corrected
-                              positions, and the corrected animation as one GLB, a morph
-                              target per frame (a shard writes positions/ only)
-  positions/<frame>.bin, sequence.pc2 (or .mdd), rest.obj
-                              with "format": "pc2" or "mdd": every frame's positions as one
-                              point cache, and the template mesh it applies to
-  distortion/<frame>.csv      shear per triangle before and after ("per_triangle_csv")
-  colored/{before,after}/<frame>.ply
-                              the shear (eq. 8) as colours, blue to red ("colored")
-  checker/{before,after}/<frame>.obj, checker.mtl, checker.png
-                              a checkerboard texture on the template's UVs ("checker")
-  iterations.csv              the optimizer's figures, iteration by iteration ("iterations")
-  records/<frame>.json        what made each frame, its summary row, its outputs' SHA-256
+)";
+
+constexpr const char* kHelpFooter = R"(  records/<frame>.json        what made each frame, its summary row, its outputs' SHA-256
   summary.csv, report.json    one row per frame; config, totals, warnings, failures
 A shard (--shard I/N) names its own summary.shard-I-of-N.csv, report.shard-I-of-N.json and
 iterations.shard-I-of-N.csv; 'seqmassage merge' writes summary.csv, report.json,
@@ -185,7 +176,7 @@ Args parse_args(int argc, char** argv) {
   Args out;
   CLI::App app(kHelp, "seqmassage");
   sm::cli::set_conventions(app, 24);
-  app.footer(kHelpFooter);
+  app.footer(kHelpInputs + sm::outputs_help() + kHelpFooter);
   app.set_version_flag("--version", version_text, "print the version and exit");
   int threads = 0;
   std::string frames, shard;
@@ -336,7 +327,7 @@ int run(const Args& args) {
   if (!args.quiet) {
     if (plan.config.resume) std::cerr << "seqmassage: " << sm::resume_text(result) << "\n";
     std::cerr << "seqmassage: " << sm::run_end_text(result) << "\n";
-    print_results(out, sm::run_output_names(plan, result));
+    print_results(out, sm::run_output_names(plan));
     if (plan.config.shard.sharded() && !result.interrupted)
       std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }

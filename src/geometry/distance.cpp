@@ -1,4 +1,5 @@
 #include "geometry/distance.hpp"
+#include "geometry/distance_meter.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -251,12 +252,11 @@ DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
   return stats;
 }
 
-}  // namespace
-
-DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
-                                 const DistanceOptions& options, const TrianglePlanes* planes_b,
-                                 const Topology* topology_b, const DistanceLayout* layout,
-                                 DistanceWorkspace* work) {
+// one_sided_distance with the sampling layout of A's triangles and the scratch memory lent
+// (the same results as without them).
+DistanceStats measure(const TriMesh& A, const TriangleBvh& B, const DistanceOptions& options,
+                      const TrianglePlanes* planes_b, const Topology* topology_b,
+                      const DistanceLayout* layout, DistanceWorkspace* work) {
   validate_mesh(A, "one_sided_distance (A)");
   check_ranges(options, "measures");  // the ranges of fields_of<DistanceOptions>()
   const int m = A.num_triangles();
@@ -296,6 +296,39 @@ DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
     stats.rms_rel = stats.rms / diagonal;
   }
   return stats;
+}
+
+}  // namespace
+
+DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
+                                 const DistanceOptions& options, const TrianglePlanes* planes_b,
+                                 const Topology* topology_b) {
+  return measure(A, B, options, planes_b, topology_b, nullptr, nullptr);
+}
+
+DistanceMeter::DistanceMeter(const Triangles& F, int num_vertices,
+                             std::shared_ptr<const Topology> topology, DistanceOptions options)
+    : layout_(F, num_vertices),
+      topology_(std::move(topology)),
+      options_(options),
+      pool_(std::make_unique<DistanceWorkspaces>()) {}
+
+FrameDistances DistanceMeter::measure(const TriMesh& original, const TriangleBvh& original_bvh,
+                                      const TrianglePlanes& original_planes,
+                                      const Positions& moved) const {
+  const DistanceWorkspaces::Lease lease = pool_->acquire();
+  DistanceWorkspace& work = *lease.get();
+  const Topology* topology = topology_.get();
+  FrameDistances d;
+  const TriMesh output{moved, original.F};
+  d.moved_to_original = sm::measure(output, original_bvh, options_, &original_planes, topology,
+                                    &layout_, &work);
+  work.bvh = original_bvh;  // same triangles: refit, no rebuild
+  work.bvh.refit(moved);
+  work.planes.update(moved, original.F, topology);
+  d.original_to_moved =
+      sm::measure(original, work.bvh, options_, &work.planes, topology, &layout_, &work);
+  return d;
 }
 
 double symmetric_hausdorff(const DistanceStats& a_to_b, const DistanceStats& b_to_a) {

@@ -1,8 +1,6 @@
 #pragma once
 /// Metro-style one-sided and symmetric Hausdorff distances between meshes (paper Tables 1–3).
 #include "geometry/bvh.hpp"
-#include "geometry/distance_layout.hpp"
-#include "geometry/distance_workspace.hpp"
 #include "geometry/triangle_planes.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/options_table.hpp"
@@ -91,8 +89,8 @@ struct DistanceStats {
 /// Reference::planes()), otherwise they are computed; with `topology_b` (B's connectivity, for
 /// frames computed with it) a sample that settles in a face skips its edge neighbours.
 /// With options.adaptive, see DistanceOptions::adaptive for the samples and statistics.
-/// `layout`, if given and built for A's triangles (DistanceLayout::fits), spares rebuilding it;
-/// `work`, if given, lends its memory (the results are the same).
+/// (DistanceMeter measures many frames of one connectivity with the same results, keeping the
+/// sampling layout and the scratch memory from call to call.)
 /// Deterministic: the result does not depend on the number of threads. No samples (A has no
 /// triangles) gives all zeros.
 /// Throws InputError if A is invalid (validate_mesh) or A has triangles but B has none, and
@@ -100,9 +98,7 @@ struct DistanceStats {
 DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
                                  const DistanceOptions& options = {},
                                  const TrianglePlanes* planes_b = nullptr,
-                                 const Topology* topology_b = nullptr,
-                                 const DistanceLayout* layout = nullptr,
-                                 DistanceWorkspace* work = nullptr);
+                                 const Topology* topology_b = nullptr);
 
 /// Symmetric Hausdorff distance d_H(A, B) = max(d_h(A, B), d_h(B, A)) from the two one-sided
 /// results (absolute units; for relative units compare max_rel, which share one diagonal).

@@ -13,7 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/sequence_job.hpp"
+#include "pipeline/frame_summary.hpp"
+#include "pipeline/sequence_options.hpp"
 #include "pipeline/sequence_options.hpp"
 
 namespace sm {

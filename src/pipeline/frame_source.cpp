@@ -93,8 +93,10 @@ class SyntheticSource : public ObjFolderSource {
   }
   void prepare() const override { write_synthetic_sequence(sequence_, dir_, ground_truth_dir_); }
   fs::path ground_truth_dir() const override { return ground_truth_dir_; }
-  std::optional<Positions> ground_truth(int i) const override {
-    return synthetic_frame(sequence_, i).clean;
+  SourceFrame decode(int i, std::string bytes) const override {
+    SourceFrame frame = ObjFolderSource::decode(i, std::move(bytes));
+    frame.ground_truth = synthetic_frame(sequence_, i).clean;
+    return frame;
   }
 
  private:
@@ -108,13 +110,15 @@ class SyntheticSource : public ObjFolderSource {
 class GltfSource : public FrameSource {
  public:
   explicit GltfSource(const GltfInputOptions& options)
-      : options_(options), sequence_(load_gltf_sequence(options)) {
+      : options_(options),
+        asset_(std::make_shared<const GltfSequence>(load_gltf_sequence(options))),
+        sequence_(*asset_) {
     const std::string comment = "seqmassage: " + what() + "\nvertices welded by position; " +
                                 "vt = (u, 1 - v) of TEXCOORD_0";
     layout_ = std::make_shared<const ObjFile>(gltf_obj_layout(sequence_, comment));
   }
 
-  const GltfSequence* gltf() const override { return &sequence_; }
+  std::shared_ptr<const GltfSequence> asset() const { return asset_; }
 
   int size() const override { return sequence_.num_frames(); }
   std::string name(int i) const override { return numbered_frame_name(i, size()); }
@@ -214,7 +218,8 @@ class GltfSource : public FrameSource {
   }
 
   GltfInputOptions options_;
-  GltfSequence sequence_;
+  std::shared_ptr<const GltfSequence> asset_;
+  const GltfSequence& sequence_;
   std::shared_ptr<const ObjFile> layout_;
   mutable std::once_flag asset_hash_once_;
   mutable std::string asset_hash_;  // of the .glb/.gltf and the files it refers to
@@ -249,10 +254,15 @@ std::string FrameSource::fetch(int) const {
   return {};
 }
 
-std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config) {
+std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config,
+                                                     std::shared_ptr<const GltfSequence>* gltf) {
   const InputOptions& in = config.input;
   if (in.synthetic) return std::make_shared<SyntheticSource>(*in.synthetic, config.output.dir);
-  if (in.gltf) return std::make_shared<GltfSource>(*in.gltf);
+  if (in.gltf) {
+    auto source = std::make_shared<GltfSource>(*in.gltf);
+    if (gltf) *gltf = source->asset();
+    return source;
+  }
   if (const std::optional<PointCacheInput> cache = in.point_cache())
     return make_point_cache_source(*cache);
   return std::make_shared<ObjFolderSource>(in.frames);

@@ -26,6 +26,8 @@ struct SourceFrame {
   std::shared_ptr<const ObjFile> obj;
   std::string bytes;  ///< the frame's file as read; empty when the frame has no file of its own
   std::vector<std::string> warnings;  ///< e.g. welded glTF copies that came apart
+  /// The frame's clean positions (n×3), for a generated sequence (its ground truth).
+  std::optional<Positions> ground_truth;
 };
 
 class FrameSource {
@@ -67,20 +69,17 @@ class FrameSource {
 
   /// Where the clean frames of a generated sequence are written, empty if there are none.
   virtual std::filesystem::path ground_truth_dir() const { return {}; }
-  /// Clean positions of frame i, for a generated sequence.
-  virtual std::optional<Positions> ground_truth(int /*i*/) const { return std::nullopt; }
-
-  /// The glTF sequence the frames are evaluated from (for an output that rebuilds the source
-  /// asset), or null.
-  virtual const GltfSequence* gltf() const { return nullptr; }
   /// The header of the point cache the frames are read from (PC2, MDD), or null.
   virtual const PointCacheHeader* point_cache() const { return nullptr; }
 };
 
 /// The source of the config's input ("frames", "synthetic", "gltf", "pc2" or "mdd"). A glTF file is loaded,
 /// welded and checked here; other sources list or generate nothing yet. Throws like the loaders:
-/// IoError, InputError naming the file and element, ConfigError for invalid values.
-std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config);
+/// IoError, InputError naming the file and element, ConfigError for invalid values. For a glTF
+/// input, `gltf` (if given) receives the loaded asset, which an output that rebuilds it (the
+/// GLB) is built with.
+std::shared_ptr<const FrameSource> make_frame_source(
+    const SequenceJobOptions& config, std::shared_ptr<const GltfSequence>* gltf = nullptr);
 
 /// "frame 7 (frame_0007.obj)", with ", t = 0.25 s" for a frame with a time: how messages name a
 /// frame (FrameSource::label).

@@ -9,9 +9,8 @@
 #include "io/options_json.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/frame_record.hpp"
-#include "pipeline/frame_sink.hpp"
-#include "pipeline/iteration_log.hpp"
-#include "pipeline/point_cache_output.hpp"
+#include "io/gltf_load.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/shard.hpp"
 
@@ -279,35 +278,28 @@ MergeResult merge_shards(const fs::path& output_dir) {
     append_frame_warnings(f, config.output.on_failure, result.warnings);
     result.failed += f.status == FrameStatus::Failed;
   }
-  for (const char* sub : {".", "frames", "distortion", "positions", "records"})
-    remove_stale_temporaries(dir / sub);
-  if (config.output.format == OutputFormat::Gltf) {
-    std::vector<int> with_output;
-    for (const FrameSummary& f : result.frames)
-      if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip))
-        with_output.push_back(f.frame);
-    SequenceJobOptions whole = config;
-    whole.output.dir = dir;
-    for (std::string& w : assemble_sequence_glb(whole, *input_source(), with_output))
-      result.warnings.push_back(std::move(w));
-    result.written.push_back("sequence.glb");
-  }
-  if (const std::optional<PointCacheFormat> cache = point_cache_format(config.output.format)) {
-    SequenceJobOptions whole = config;
-    whole.output.dir = dir;
-    std::vector<int> with_output;  // as for the GLB: a skipped failed frame is left out (MDD)
-    for (const FrameSummary& f : result.frames)
-      if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip))
-        with_output.push_back(f.frame);
-    for (std::string& w : assemble_point_cache(whole, *input_source(), with_output))
-      result.warnings.push_back(std::move(w));
-    result.written.push_back(point_cache_file_name(*cache).string());
-    result.written.push_back("rest.obj");
-  }
-  if (config.output.iterations.enabled) {
-    write_file_atomic(dir / "iterations.csv",
-                      CsvWriter(iteration_columns()).str() + iteration_rows);
-    result.written.push_back("iterations.csv");
+  SequenceJobOptions whole = config;  // the shards' config: "shard" is the whole run's
+  whole.output.dir = dir;
+  const auto gltf = [&]() -> std::shared_ptr<const GltfSequence> {
+    if (!whole.input.gltf) return nullptr;
+    return std::make_shared<const GltfSequence>(load_gltf_sequence(*whole.input.gltf));
+  };
+  const std::vector<std::shared_ptr<FrameOutput>> outputs =
+      make_frame_outputs({whole, nullptr, gltf});
+  for (const char* sub : {".", "records"}) remove_stale_temporaries(dir / sub);
+  for (const auto& output : outputs)
+    for (const fs::path& folder : output->folders()) remove_stale_temporaries(folder);
+  FinishedFrames done;
+  done.record_rows = iteration_rows;
+  for (const FrameSummary& f : result.frames)
+    if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip)) {
+      done.frames.push_back(f.frame);
+      done.names.push_back(f.file);
+    }
+  for (const auto& output : outputs) {
+    OutputFinish finished = output->finish(done);
+    for (std::string& w : finished.warnings) result.warnings.push_back(std::move(w));
+    for (std::string& file : finished.written) result.written.push_back(std::move(file));
   }
   json run;
   if (config.output.timings) {

@@ -7,7 +7,7 @@
 
 #include "io/csv.hpp"
 #include "mesh/errors.hpp"
-#include "pipeline/point_cache_output.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/report_json.hpp"
 #include "pipeline/shard.hpp"
 
@@ -60,13 +60,6 @@ std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool tim
   return csv.str();
 }
 
-std::string format_distortion_csv(const Eigen::VectorXd& before, const Eigen::VectorXd& after) {
-  CsvWriter csv({"triangle", "shear_before", "shear_after"});
-  for (Eigen::Index t = 0; t < before.size(); ++t)
-    csv.cell(static_cast<int64_t>(t)).cell(before[t]).cell(after[t]).end_row();
-  return csv.str();
-}
-
 json version_info() {
 #if defined(__clang__)
   const std::string compiler = "clang " __clang_version__;
@@ -112,11 +105,12 @@ ReportHeader report_header(const SequencePlan& plan) {
              {"triangles", plan.templ.num_triangles()},
              {"weight_fallback_vertices", plan.massager->weights().fallback_vertices},
              {"hash", plan.template_hash}};
+  // "distortion" is null when that output is off (report.json has always listed it).
   h.outputs = {{"dir", c.output.dir.string()},
-               {"distortion", c.output.per_triangle_csv ? json("distortion/") : json(nullptr)},
+               {"distortion", nullptr},
                {"records", "records/"},
                {"summary", "summary.csv"}};
-  h.outputs.update(plan.sink->report());
+  for (const auto& output : plan.outputs) h.outputs.update(output->report());
   h.frames_listed = plan.source->size();
   h.frames_selected = static_cast<int>(plan.selected.size());
   h.ground_truth = plan.source->ground_truth_dir().string();
@@ -248,27 +242,16 @@ ShearMeans mean_shear(const std::vector<FrameSummary>& frames) {
   return m;
 }
 
-std::vector<std::string> run_output_names(const SequencePlan& plan, const SequenceResult& result) {
+std::vector<std::string> run_output_names(const SequencePlan& plan) {
   const SequenceJobOptions& c = plan.config;
-  std::vector<std::string> names;
-  if (c.output.format == OutputFormat::Gltf) {
-    names.push_back("positions/");
-    if (!c.shard.sharded()) names.push_back("sequence.glb");
-  } else if (const std::optional<PointCacheFormat> cache = point_cache_format(c.output.format)) {
-    names.push_back("positions/");
-    if (!c.shard.sharded()) {
-      names.push_back(point_cache_file_name(*cache).string());
-      names.push_back("rest.obj");
-    }
-  } else {
-    names.push_back("frames/");
+  std::vector<std::string> names, tables;
+  for (const auto& output : plan.outputs) {
+    ResultNames r = output->results();
+    names.insert(names.end(), r.before_records.begin(), r.before_records.end());
+    tables.insert(tables.end(), r.after_records.begin(), r.after_records.end());
   }
-  if (c.output.per_triangle_csv) names.push_back("distortion/");
-  const json& extras = result.extra_outputs;
-  if (extras.contains("colored")) names.push_back("colored/ (PLY)");
-  if (extras.contains("checker")) names.push_back("checker/ (OBJ, MTL, PNG)");
   names.push_back("records/");
-  if (extras.contains("iterations")) names.push_back(extras["iterations"].get<std::string>());
+  names.insert(names.end(), tables.begin(), tables.end());
   names.push_back(summary_file_name(c.shard));
   names.push_back(report_file_name(c.shard));
   return names;
@@ -276,8 +259,7 @@ std::vector<std::string> run_output_names(const SequencePlan& plan, const Sequen
 
 json make_report(const SequencePlan& plan, const SequenceResult& result) {
   const SequenceJobOptions& c = plan.config;
-  ReportHeader header = report_header(plan);
-  header.outputs.update(result.extra_outputs);  // colored, checker, iterations
+  const ReportHeader header = report_header(plan);
   json run;
   if (c.output.timings) {
     const size_t processed = result.frames.size() - size_t(result.resumed);

@@ -1,14 +1,15 @@
 #pragma once
-/// The tables and the report of a sequence job: summary.csv (one row per frame),
-/// distortion/<frame>.csv (one row per triangle) and report.json.
+/// The tables and the report of a sequence job: summary.csv (one row per frame) and report.json.
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "pipeline/frame_summary.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/sequence_options.hpp"
+#include "pipeline/sequence_plan.hpp"
 
 namespace sm {
 
@@ -27,9 +28,6 @@ std::string format_summary_csv(const std::vector<FrameSummary>& frames, bool tim
 void append_frame_warnings(const FrameSummary& frame, OnFailure on_failure,
                            std::vector<std::string>& warnings);
 
-/// distortion/<frame>.csv: `triangle,shear_before,shear_after`, one row per triangle (0-based).
-std::string format_distortion_csv(const Eigen::VectorXd& before, const Eigen::VectorXd& after);
-
 /// Program and library versions: seqmassage, Eigen, oneTBB, nlohmann-json, compiler.
 nlohmann::json version_info();
 
@@ -41,7 +39,7 @@ struct ReportHeader {
   nlohmann::json config;
   nlohmann::json input;               ///< FrameSource::report()
   nlohmann::json templ;               ///< "template": source, counts, fallback vertices, hash
-  nlohmann::json outputs;             ///< file names, relative to output.dir
+  nlohmann::json outputs;             ///< file names, relative to output.dir (every output's)
   int frames_listed = 0;              ///< frames of the input
   int frames_selected = 0;            ///< frames input.range selects (all shards together)
   std::string ground_truth;           ///< folder of a synthetic input's clean frames, or ""
@@ -71,11 +69,10 @@ struct ShearMeans {
 };
 ShearMeans mean_shear(const std::vector<FrameSummary>& frames);
 
-/// What a run wrote, relative to output.dir, for the command line's results line: frames/ (or
-/// positions/ and sequence.glb; a shard's GLB is assembled by merge), distortion/, colored/ (PLY),
-/// checker/ (OBJ, MTL, PNG), records/, iterations.csv, summary.csv and report.json (the last
-/// three shard-named for a shard).
-std::vector<std::string> run_output_names(const SequencePlan& plan, const SequenceResult& result);
+/// What a run writes, relative to output.dir, for the command line's results line: every
+/// output's folders (FrameOutput::results), records/, the outputs' whole-run tables, summary.csv
+/// and report.json (the last two shard-named for a shard).
+std::vector<std::string> run_output_names(const SequencePlan& plan);
 
 /// The report of a run: make_report of the plan's header and the result's frames, with the run's
 /// times (config.output.timings), and for a shard its "shard" section (index, count, its frames,

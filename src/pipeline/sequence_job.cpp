@@ -21,7 +21,7 @@
 #include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/fold_check.hpp"
-#include "pipeline/frame_extras.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/frame_record.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run_text.hpp"
@@ -77,16 +77,6 @@ void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
     if (!problem.empty()) throw InputError(problem);
 }
 
-// distortion/<frame name>.csv
-fs::path distortion_csv_name(const SequencePlan& plan, int index) {
-  return fs::path(plan.source->name(index)).replace_extension(".csv");
-}
-
-// The distortion table of a frame, relative to output.dir.
-fs::path distortion_file(const SequencePlan& plan, int index) {
-  return fs::path("distortion") / distortion_csv_name(plan, index);
-}
-
 // Refuses an output file that is one of the inputs.
 void check_outputs(const SequencePlan& plan) {
   const SequenceJobOptions& c = plan.config;
@@ -100,14 +90,13 @@ void check_outputs(const SequencePlan& plan) {
   if (plan.template_frame >= 0) read.push_back(plan.template_frame);
   for (const fs::path& file : plan.source->files(read)) inputs.insert(canonical(file));
   if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
-  std::vector<fs::path> outputs = plan.sink->files(plan.run_frames);
+  std::vector<fs::path> outputs;
+  for (const auto& output : plan.outputs)
+    for (fs::path& file : output->files(plan.run_frames)) outputs.push_back(std::move(file));
   outputs.push_back(c.output.dir / summary_file_name(c.shard));
   outputs.push_back(c.output.dir / report_file_name(c.shard));
-  for (int index : plan.run_frames) {
+  for (int index : plan.run_frames)
     outputs.push_back(record_file(c.output.dir, plan.source->name(index)));
-    if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / distortion_file(plan, index));
-  }
-  for (fs::path& file : plan.extras->files(plan.run_frames)) outputs.push_back(std::move(file));
   for (const fs::path& out : outputs)
     if (inputs.count(canonical(out)))
       throw ConfigError("output.dir: writing " + out.string() +
@@ -118,9 +107,8 @@ void check_outputs(const SequencePlan& plan) {
 struct Work {
   int index = 0;
   std::string bytes;  // what the source fetched (the input file as read, if any)
-  std::string out;    // the output frame, encoded by the sink
-  std::string csv;    // per-triangle distortion (if asked)
-  ExtraFrame extras;  // colored, checker and iterations outputs (if asked)
+  std::vector<OutputFrame> outputs;  // each output's part, as plan.outputs
+  bool needs_shared = false;  // an output's shared files must be in place before the record
   FrameSummary summary;
   bool has_output = true;  // false: failed, and output.on_failure is "skip"
   FrameRecord record;      // the record to write, or the one resumed from
@@ -179,7 +167,13 @@ void write_record(const SequencePlan& plan, const Work& w) {
                     to_json(w.record).dump(1) + "\n");
 }
 
-void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
+bool wants_shear_per_iteration(const SequencePlan& plan, int index) {
+  for (const auto& output : plan.outputs)
+    if (output->wants_shear_per_iteration(index)) return true;
+  return false;
+}
+
+void process_frame(const SequencePlan& plan, Work& w) {
   const auto t0 = Clock::now();
   const SequenceJobOptions& c = plan.config;
   const SourceFrame file = plan.source->decode(w.index, std::move(w.bytes));
@@ -212,7 +206,7 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     const std::string name = frame_label(plan, w.index);
     reference.emplace(file.mesh, c.massage.samples, name.c_str(), plan.massager->shared_topology(),
                       &plan.massager->template_bvh());
-    result = plan.extras->wants_shear_per_iteration(w.index)
+    result = wants_shear_per_iteration(plan, w.index)
                  ? plan.massager->run(file.mesh.V, *reference,
                                       shear_observer(plan.templ, shear_per_iteration))
                  : plan.massager->run(file.mesh.V, *reference);
@@ -228,38 +222,21 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
     } else {
       s.status = FrameStatus::Optimized;
       V = result.V;
-      const TriMesh output{V, F};
-      const Topology& topology = plan.massager->topology();
-      const DistanceLayout* layout = plan.distance_layout.get();
-      std::optional<DistanceWorkspaces::Lease> lease;
-      if (plan.distance_workspaces) lease.emplace(plan.distance_workspaces->acquire());
-      DistanceWorkspace own;
-      DistanceWorkspace* work = lease ? lease->get() : &own;
-      s.out_to_in = one_sided_distance(output, reference->bvh(), c.measures, &reference->planes(),
-                                       &topology, layout, work);
-      TriangleBvh& output_bvh = work->bvh;
-      output_bvh = reference->bvh();  // same triangles: refit, no rebuild
-      output_bvh.refit(V);
-      TrianglePlanes& output_planes = work->planes;
-      output_planes.update(V, F, &topology);
-      s.in_to_out = one_sided_distance(file.mesh, output_bvh, c.measures, &output_planes, &topology,
-                                       layout, work);
+      const FrameDistances d =
+          plan.distance_meter->measure(file.mesh, reference->bvh(), reference->planes(), V);
+      s.out_to_in = d.moved_to_original;
+      s.in_to_out = d.original_to_moved;
     }
   }
   w.has_output = !(s.status == FrameStatus::Failed && c.output.on_failure == OnFailure::Skip);
-  if (w.has_output) w.out = plan.sink->encode(file, V, unchanged);
   const Eigen::VectorXd after = unchanged ? before : shear_distortion(plan.templ.V, V, F);
   s.shear_before = summarize_distortion(before);
   s.shear_after = summarize_distortion(after);
-  if (c.output.per_triangle_csv && w.has_output) w.csv = format_distortion_csv(before, after);
-  if (plan.extras->any()) {
-    w.extras = extras.encode({w.index, &file, &V, &before, &after, reference ? &result : nullptr,
-                              reference ? &*reference : nullptr, &shear_per_iteration});
-    // In the frame's warnings, so that its record keeps it (resume, merge).
-    if (!w.extras.warning.empty()) s.warnings.insert(s.warnings.begin(), w.extras.warning);
-  }
+  const FrameOutcome outcome{w.index,  &file,  &V, unchanged, &before, &after,
+                             reference ? &result : nullptr, &shear_per_iteration};
+  for (const auto& output : plan.outputs) w.outputs.push_back(output->encode(outcome));
 
-  if (const std::optional<Positions> clean = plan.source->ground_truth(w.index)) {
+  if (const std::optional<Positions>& clean = file.ground_truth) {
     const double unit = mean_edge_length(plan.templ);
     const Eigen::VectorXd e_in = (file.mesh.V - *clean).rowwise().norm() / unit;
     const Eigen::VectorXd e_out = (V - *clean).rowwise().norm() / unit;
@@ -271,41 +248,38 @@ void process_frame(const SequencePlan& plan, const ExtrasRun& extras, Work& w) {
   r.config_hash = plan.config_hash;
   r.template_hash = plan.template_hash;
   r.outputs.clear();
-  if (w.has_output) {
-    r.outputs.push_back(recorded(plan.sink->output_file(w.index), w.out));
-    if (c.output.per_triangle_csv)
-      r.outputs.push_back(recorded(distortion_file(plan, w.index), w.csv));
-    for (const auto& [path, bytes] : w.extras.files) r.outputs.push_back(recorded(path, bytes));
+  r.iterations_csv.clear();
+  for (const OutputFrame& part : w.outputs) {
+    if (w.has_output)
+      for (const auto& [path, bytes] : part.files) r.outputs.push_back(recorded(path, bytes));
+    w.needs_shared = w.needs_shared || (w.has_output && part.needs_shared);
+    r.iterations_csv += part.record_rows;
   }
   r.summary = s;
-  r.iterations_csv = w.extras.iterations_csv;
 }
 
 // A frame's files, written in the parallel stage: no other frame writes them, so the frames'
 // writes (and their fsyncs) overlap the others' work instead of queueing in the serial stage. The
 // order within the frame is kept: the old record is removed first, then the outputs are written
-// (or, for a frame without output, removed), then the record, which comes back last. With extra
-// outputs, which the serial stage writes in frame order (the checker texture comes with the first
-// checker frame), the record waits for them there (write_record). Frees the encoded bytes.
+// (or, for a frame without output, removed), then the record, which comes back last. A frame
+// whose files need an output's shared files (the checker texture, written in frame order with the
+// first frame that needs it) has its record written in the serial stage, after them
+// (write_record). Frees the encoded bytes.
 void write_frame_files(const SequencePlan& plan, Work& w) {
-  const SequenceJobOptions& c = plan.config;
-  const fs::path& out = c.output.dir;
+  const fs::path& out = plan.config.output.dir;
   std::error_code ec;
   fs::remove(record_file(out, plan.source->name(w.index)), ec);
-  const fs::path frame = out / plan.sink->output_file(w.index);
-  const fs::path csv = out / distortion_file(plan, w.index);
-  if (w.has_output) {
-    write_file_atomic(frame, w.out);
-    if (c.output.per_triangle_csv) write_file_atomic(csv, w.csv);
-  } else {
-    fs::remove(frame, ec);
-    fs::remove(csv, ec);
-    for (const auto& [file, bytes] : w.extras.files) fs::remove(out / file, ec);
-    w.extras.files.clear();
+  for (OutputFrame& part : w.outputs) {
+    for (const auto& [file, bytes] : part.files) {
+      if (w.has_output)
+        write_file_atomic(out / file, bytes);
+      else
+        fs::remove(out / file, ec);
+    }
+    part.files.clear();
+    part.files.shrink_to_fit();
   }
-  std::string().swap(w.out);
-  std::string().swap(w.csv);
-  if (!plan.extras->any()) write_record(plan, w);
+  if (!w.needs_shared) write_record(plan, w);
 }
 
 }  // namespace
@@ -329,14 +303,15 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
   plan.threads = c.threads > 0 ? c.threads : std::max(1, tbb::info::default_concurrency());
   plan.frames_in_flight = c.frames_in_flight > 0 ? c.frames_in_flight : 2 * plan.threads;
 
-  plan.source = make_frame_source(c);
-  plan.sink = make_frame_sink(c, plan.source);
-  plan.extras = std::make_shared<const FrameExtras>(c, plan.source);
+  std::shared_ptr<const GltfSequence> gltf;
+  plan.source = make_frame_source(c, &gltf);
+  plan.outputs = make_frame_outputs({c, plan.source, [gltf] { return gltf; }});
   const int count = plan.source->size();
   plan.selected = select_frames(c.input.range, count);
   plan.run_frames = shard_frames(plan.selected, c.shard);
-  for (std::string& warning : plan.extras->check(plan.selected))
-    plan.warnings.push_back(std::move(warning));
+  for (const auto& output : plan.outputs)
+    for (std::string& warning : output->check(plan.selected))
+      plan.warnings.push_back(std::move(warning));
 
   if (c.templ.mesh.empty()) {
     if (c.templ.frame >= count)
@@ -352,9 +327,8 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
   }
   plan.massager =
       std::make_shared<const Massager>(plan.templ, c.massage, plan.template_source.c_str());
-  plan.distance_layout =
-      std::make_shared<const DistanceLayout>(plan.templ.F, plan.templ.num_vertices());
-  plan.distance_workspaces = std::make_shared<DistanceWorkspaces>();
+  plan.distance_meter = std::make_shared<const DistanceMeter>(
+      plan.templ.F, plan.templ.num_vertices(), plan.massager->shared_topology(), c.measures);
   plan.config_hash = frame_config_hash(c);
   plan.template_hash = template_hash(plan.templ);
 
@@ -423,10 +397,7 @@ std::string describe_plan(const SequencePlan& plan) {
       << (c.measures.sample_faces ? ", inside the triangles" : "") << "\n";
   s << "threads: " << plan.threads << ", frames in flight: " << plan.frames_in_flight << "\n";
   s << "output: " << c.output.dir.string() << "\n";
-  s << plan.sink->describe(plan.run_frames);
-  if (c.output.per_triangle_csv)
-    s << "  distortion/<name>.csv (" << plan.run_frames.size() << " files)\n";
-  s << plan.extras->describe(plan.run_frames);
+  for (const auto& output : plan.outputs) s << output->describe(plan.run_frames);
   s << "  records/<name>.json (" << plan.run_frames.size() << " files)\n";
   s << "  " << summary_file_name(c.shard) << ", " << report_file_name(c.shard) << "\n";
   for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
@@ -439,8 +410,7 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
   const fs::path& out = c.output.dir;
   SequenceResult result;
   result.warnings = plan.warnings;
-  for (const char* dir :
-       {".", "frames", "distortion", "positions", "records", "input", "ground_truth"})
+  for (const char* dir : {".", "records", "input", "ground_truth"})
     remove_stale_temporaries(out / dir);
   // The summary and report of an earlier run would no longer describe the files: they are written
   // again when this run ends (or stops at an interruption), and are absent until then.
@@ -449,9 +419,19 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
     fs::remove(out / name, ec);
   }
   plan.source->prepare();
-  for (const fs::path& dir : plan.extras->folders()) remove_stale_temporaries(dir);
-  const std::unique_ptr<FrameWriter> writer = plan.sink->start();
-  const std::unique_ptr<ExtrasRun> extras = plan.extras->start(plan);
+  for (const auto& output : plan.outputs) {
+    for (const fs::path& dir : output->folders()) remove_stale_temporaries(dir);
+    output->start(plan);
+  }
+  FinishedFrames done;                                    // what the outputs finish from
+  std::vector<bool> shared_written(plan.outputs.size());  // their shared files, this run
+  const auto keep = [&](const Work& w) {
+    if (w.has_output) {
+      done.frames.push_back(w.index);
+      done.names.push_back(w.summary.file);
+    }
+    done.record_rows += w.record.iterations_csv;
+  };
 
   const size_t total = plan.run_frames.size();
   size_t next = 0;
@@ -513,27 +493,29 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                     }
                   }
                   w->record.input_hash = input_hash;
-                  process_frame(plan, *extras, *w);
+                  process_frame(plan, *w);
                   if (!failed) write_frame_files(plan, *w);  // else dropped, like the others
                   return w;
                 })) &
             tbb::make_filter<std::shared_ptr<Work>, void>(
                 tbb::filter_mode::serial_in_order, guarded([&](std::shared_ptr<Work> w) {
                   if (w->resumed) {
-                    if (w->has_output) writer->keep(w->index);
-                    extras->keep(w->record.iterations_csv);
                     ++result.resumed;
                   } else {
-                    // The frame's own files are written (write_frame_files); its extra outputs
-                    // (or, without output, its iterations.csv rows) go here, in frame order, and
-                    // then its record if they held it back.
+                    // The frame's own files are written (write_frame_files); the shared files
+                    // they need go here, in frame order, then its record if they held it back.
                     if (c.resume) ++result.redone[w->redo];
-                    if (w->has_output) writer->keep(w->index);
-                    if (plan.extras->any()) {
-                      extras->write(w->extras);
+                    if (w->needs_shared) {
+                      for (size_t k = 0; k < plan.outputs.size(); ++k) {
+                        if (!w->outputs[k].needs_shared || shared_written[k]) continue;
+                        for (const auto& [file, bytes] : plan.outputs[k]->shared_files())
+                          write_file_atomic(out / file, bytes);
+                        shared_written[k] = true;
+                      }
                       write_record(plan, *w);
                     }
                   }
+                  keep(*w);
                   const FrameSummary& s = w->summary;
                   append_frame_warnings(s, c.output.on_failure, result.warnings);
                   if (s.status == FrameStatus::Failed) ++result.failed;
@@ -545,8 +527,9 @@ SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks)
                 })));
   });
   if (error) std::rethrow_exception(error);
-  for (std::string& warning : writer->finish()) result.warnings.push_back(std::move(warning));
-  result.extra_outputs = extras->finish();
+  for (const auto& output : plan.outputs)
+    for (std::string& warning : output->finish(done).warnings)
+      result.warnings.push_back(std::move(warning));
   result.seconds = seconds_since(t0);
   write_file_atomic(out / summary_file_name(c.shard),
                     format_summary_csv(result.frames, c.output.timings));

@@ -2,8 +2,8 @@
 /// The sequence job (paper §3.1): every frame of a mesh sequence is massaged towards the triangle
 /// shapes of a template frame while it stays on its own surface, streamed through a bounded TBB
 /// pipeline (read in order → decode, optimize, measure and encode in parallel → write in order)
-/// from a FrameSource (OBJ folder, synthetic, glTF, point cache) to a FrameSink (OBJ frames, GLB,
-/// point cache).
+/// from a FrameSource (OBJ folder, synthetic, glTF, point cache) to the per-frame outputs
+/// (frame_output.hpp).
 #include <atomic>
 #include <filesystem>
 #include <functional>
@@ -13,80 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "geometry/distance.hpp"
-#include "geometry/shear.hpp"
-#include "massage/massage.hpp"
-#include "pipeline/frame_sink.hpp"
-#include "pipeline/frame_source.hpp"
+#include "pipeline/frame_summary.hpp"
 #include "pipeline/sequence_options.hpp"
+#include "pipeline/sequence_plan.hpp"
 
 namespace sm {
-
-class FrameExtras;
-
-/// What happened to a frame.
-enum class FrameStatus {
-  Optimized,  ///< "optimized": massaged and written with its new positions
-  Template,   ///< "template": the template frame, written unchanged (byte for byte)
-  Failed,     ///< "failed": numerical failure; written unchanged or not at all (output.on_failure),
-              ///< the reason in `failure`
-};
-
-/// Distances of the synthetic sequence's vertices to their ground-truth positions, in units of
-/// the template's mean edge length.
-struct GroundTruthError {
-  double mean_before = 0.0, max_before = 0.0;  ///< the input (drifted) frame
-  double mean_after = 0.0, max_after = 0.0;    ///< the output frame
-};
-
-/// One row of summary.csv.
-struct FrameSummary {
-  int frame = 0;               ///< index in the natural order of the input frames
-  std::string file;            ///< the frame's file name (FrameSource::name)
-  std::optional<double> time;  ///< seconds into the animation (glTF input)
-  int vertices = 0;
-  int triangles = 0;
-  DistortionSummary shear_before;  ///< eq. 8 against the original template, input frame
-  DistortionSummary shear_after;   ///< the same for the output frame
-  DistanceStats out_to_in;         ///< output frame sampled, to the input frame's surface
-  DistanceStats in_to_out;         ///< input frame sampled, to the output frame's surface
-  int iterations = 0;              ///< outer iterations run
-  double seconds = 0.0;            ///< optimization and measures of this frame
-  FrameStatus status = FrameStatus::Optimized;
-  /// Why the frame failed (status Failed): "optimizer failed: ...", "non-finite positions: ..."
-  /// or "folded triangles: ...".
-  std::string failure;
-  /// Output triangles whose normal opposes the same triangle's normal in the input frame
-  /// (count_folded_triangles); checks.max_folded_triangles decides whether the frame fails.
-  int folded_triangles = 0;
-  std::optional<GroundTruthError> ground_truth;  ///< synthetic input only
-  std::vector<std::string> warnings;             ///< from reading the frame (e.g. glTF welding)
-  /// Not processed by this run: taken from the frame's record by resume (not in summary.csv).
-  bool resumed = false;
-};
-
-/// Everything a run needs, checked: built by plan_sequence_job without writing anything.
-struct SequencePlan {
-  SequenceJobOptions config;
-  std::shared_ptr<const FrameSource> source;  ///< every input frame, in order
-  std::shared_ptr<const FrameSink> sink;      ///< where the corrected frames go
-  std::shared_ptr<const FrameExtras> extras;  ///< colored, checker and iterations outputs
-  std::vector<int> selected;                  ///< indices of the job's selected frames, in order
-  std::vector<int> run_frames;  ///< the frames this run processes: `selected`, or its shard of them
-  int template_frame = -1;      ///< index of the template frame, -1 for a mesh
-  std::string template_source;  ///< e.g. "frame 0 (frame_0000.obj)"
-  TriMesh templ;                ///< the original template: weights and shear
-  std::shared_ptr<const Massager> massager;  ///< built once from the template
-  /// The distances' sampling layout of the template's triangles (every frame's), built once.
-  std::shared_ptr<const DistanceLayout> distance_layout;
-  /// Their scratch memory, one workspace per frame being measured, kept from frame to frame.
-  std::shared_ptr<DistanceWorkspaces> distance_workspaces;
-  int threads = 1;            ///< resolved worker threads
-  int frames_in_flight = 2;   ///< resolved pipeline tokens
-  std::string config_hash;    ///< frame_config_hash(config), kept in every frame record
-  std::string template_hash;  ///< template_hash(templ)
-  std::vector<std::string> warnings;
-};
 
 /// Result of a run, the frames in order.
 struct SequenceResult {
@@ -99,7 +30,6 @@ struct SequenceResult {
   std::map<std::string, int> redone;
   bool interrupted = false;  ///< stopped by RunHooks::cancel before every frame was done
   double seconds = 0.0;      ///< wall time of the whole run
-  nlohmann::json extra_outputs = nlohmann::json::object();  ///< report.json "outputs" entries
 };
 
 struct RunHooks {
@@ -133,8 +63,5 @@ std::string describe_plan(const SequencePlan& plan);
 /// in the result, not thrown. Same plan, same output bytes (apart from timings), whatever the
 /// number of threads, interruptions and resumes.
 SequenceResult run_sequence_job(const SequencePlan& plan, const RunHooks& hooks = {});
-
-/// The column value of a status: "optimized", "template", "failed".
-const char* status_name(FrameStatus status);
 
 }  // namespace sm

@@ -6,6 +6,8 @@
 
 #include "geometry/distance.hpp"
 #include "geometry/distance_layout.hpp"
+#include "geometry/distance_meter.hpp"
+#include "mesh/topology.hpp"
 #include "mesh/primitives.hpp"
 
 using namespace sm;
@@ -39,39 +41,41 @@ TEST_CASE("distance layout: every vertex and edge owned once, by its first trian
   }
 }
 
-TEST_CASE(
-    "distance layout and workspace given or not: the same distances; another mesh's "
-    "layout is not used",
-    "[distance]") {
+namespace {
+
+void check_same(const DistanceStats& d, const DistanceStats& built) {
+  CHECK(d.samples == built.samples);
+  CHECK(d.refined == built.refined);
+  CHECK(d.max == built.max);
+  CHECK(d.mean == built.mean);
+  CHECK(d.rms == built.rms);
+}
+
+}  // namespace
+
+TEST_CASE("distance meter: the same distances both ways as one_sided_distance, frame after frame",
+          "[distance]") {
   const TriMesh a = make_torus(30, 12, 2.0, 0.5);
-  TriMesh b = a;
-  for (int i = 0; i < b.num_vertices(); ++i)
-    b.V.row(i) += 0.02 * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(5.0 * i), std::sin(i));
-  const TriangleBvh bvh(b);
-  const DistanceLayout layout(a.F, a.num_vertices());
-  const TriMesh other = make_icosphere(2, 1.0);
-  const DistanceLayout wrong(other.F, other.num_vertices());
-  DistanceWorkspace work;  // reused across meshes and options
+  const auto topology = std::make_shared<const Topology>(build_topology(a));
+  const TriangleBvh bvh(a);
+  const TrianglePlanes planes(a.V, a.F, topology.get());
   for (bool adaptive : {false, true}) {
     DistanceOptions o;
     o.adaptive = adaptive;
-    const DistanceStats built = one_sided_distance(a, bvh, o);
-    for (const DistanceLayout* given : {&layout, &wrong}) {
-      for (DistanceWorkspace* w : {static_cast<DistanceWorkspace*>(nullptr), &work}) {
-        const DistanceStats d = one_sided_distance(a, bvh, o, nullptr, nullptr, given, w);
-        CHECK(d.samples == built.samples);
-        CHECK(d.refined == built.refined);
-        CHECK(d.max == built.max);
-        CHECK(d.mean == built.mean);
-        CHECK(d.rms == built.rms);
-      }
-      // The workspace, used for another mesh in between, still gives the same.
-      const DistanceStats x =
-          one_sided_distance(other, TriangleBvh(b), o, nullptr, nullptr, nullptr, &work);
-      const DistanceStats y = one_sided_distance(other, TriangleBvh(b), o);
-      CHECK(x.samples == y.samples);
-      CHECK(x.max == y.max);
-      CHECK(x.rms == y.rms);
+    const DistanceMeter meter(a.F, a.num_vertices(), topology, o);
+    for (double amount : {0.02, 0.05, 0.02}) {  // the workspace reused from frame to frame
+      Positions moved = a.V;
+      for (int i = 0; i < a.num_vertices(); ++i)
+        moved.row(i) +=
+            amount * Eigen::RowVector3d(std::sin(3.0 * i), std::cos(5.0 * i), std::sin(i));
+      const TriMesh b{moved, a.F};
+      const FrameDistances d = meter.measure(a, bvh, planes, moved);
+      check_same(d.moved_to_original, one_sided_distance(b, bvh, o, &planes, topology.get()));
+      TriangleBvh refit = bvh;  // the meter's BVH of the moved copy
+      refit.refit(moved);
+      const TrianglePlanes moved_planes(moved, a.F, topology.get());
+      check_same(d.original_to_moved,
+                 one_sided_distance(a, refit, o, &moved_planes, topology.get()));
     }
   }
 }

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "geometry/distance.hpp"
+#include "geometry/distance_meter.hpp"
 #include "geometry/distance_workspace.hpp"
 #include "mesh/primitives.hpp"
 
@@ -41,13 +42,13 @@ TEST_CASE("distance workspaces under concurrent frames give each frame's own dis
   o.adaptive = true;
   std::vector<double> alone(targets.size()), pooled(targets.size());
   for (size_t k = 0; k < targets.size(); ++k)
-    alone[k] = one_sided_distance(a, TriangleBvh(targets[k]), o).rms;
-  DistanceWorkspaces pool;
+    alone[k] = one_sided_distance(targets[k], TriangleBvh(a), o).rms;
+  // The meter leases one workspace per frame being measured.
+  const DistanceMeter meter(a.F, a.num_vertices(), nullptr, o);
+  const TriangleBvh bvh(a);
+  const TrianglePlanes planes(a.V, a.F);
   tbb::parallel_for(size_t(0), targets.size(), [&](size_t k) {
-    const DistanceWorkspaces::Lease lease = pool.acquire();
-    pooled[k] =
-        one_sided_distance(a, TriangleBvh(targets[k]), o, nullptr, nullptr, nullptr, lease.get())
-            .rms;
+    pooled[k] = meter.measure(a, bvh, planes, targets[k].V).moved_to_original.rms;
   });
   CHECK(pooled == alone);
 }

@@ -13,7 +13,7 @@
 #include "io/png.hpp"
 #include "massage/reference.hpp"
 #include "pipeline/checker.hpp"
-#include "pipeline/frame_extras.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/iteration_log.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "pipeline/shear_ply.hpp"

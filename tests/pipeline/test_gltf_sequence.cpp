@@ -318,7 +318,7 @@ TEST_CASE("every real glTF model runs through the job to a valid GLB", "[data]")
       CHECK(f.vertices == plan.templ.num_vertices());
     }
     test::require_valid_gltf(dir / "out/sequence.glb");
-    const GltfSequence source = *plan.source->gltf();
+    const GltfSequence source = load_gltf_sequence(*c.input.gltf);
     const GltfSequence glb = load_gltf_sequence({dir / "out/sequence.glb", "", "", std::nullopt});
     REQUIRE(glb.num_frames() == int(plan.selected.size()));
     CHECK(glb.rest.F == source.rest.F);

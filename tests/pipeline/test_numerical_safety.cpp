@@ -9,7 +9,7 @@
 #include "io/csv.hpp"
 #include "io/obj.hpp"
 #include "pipeline/frame_record.hpp"
-#include "pipeline/frame_sink.hpp"
+#include "pipeline/frame_output.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/sequence_job.hpp"
 #include "support/sequence_fixture.hpp"
@@ -66,7 +66,7 @@ SequencePlan failing_plan(const SequenceJobOptions& c) {
   SequencePlan plan = plan_sequence_job(c);
   // Frame 4: a NaN from the source.
   plan.source = std::make_shared<NanSource>(plan.source, 4);
-  plan.sink = make_frame_sink(plan.config, plan.source);
+  plan.outputs = make_frame_outputs({plan.config, plan.source, {}});
   return plan;
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "io/csv.hpp"
+#include "pipeline/output_distortion.hpp"
 #include "pipeline/report.hpp"
 
 using namespace sm;
