@@ -30,7 +30,8 @@ by its "job" key:
 // The footer's outputs of a sequence come from the output registry (sm::outputs_help), between
 // these two parts (run_help_footer).
 const char* const kHelpInputs = R"(Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
-with "mesh", "animation" and "fps"), or a generated sequence ("synthetic").
+with "mesh", "animation" and "fps"), a PC2 or MDD point cache on a mesh ("pc2" or "mdd", with
+"mesh": its OBJ, PLY or OFF), or a generated sequence ("synthetic").
 
 Outputs of a sequence, under "output.dir":
 )";
@@ -39,7 +40,7 @@ const char* const kHelpFooter = R"(  records/<frame>.json        what made each 
   summary.csv, report.json    one row per frame; config, totals, warnings, failures
 A shard (--shard I/N) names its own summary.shard-I-of-N.csv, report.shard-I-of-N.json and
 iterations.shard-I-of-N.csv; 'seqmassage merge' writes summary.csv, report.json,
-iterations.csv and sequence.glb from them.
+iterations.csv, and sequence.glb or sequence.pc2/.mdd and rest.obj from them.
 Outputs of the other jobs: <input file name> (in "output.format"), measures.csv (before and
 after), report.json and, with "per_triangle_csv", triangles.csv.
 --frames, --resume and --shard apply to sequences only. Every file is written to a temporary
@@ -75,8 +76,9 @@ const char* const kMergeHelp = R"(Usage: seqmassage merge [options] OUTPUT_DIR
 Combines the shards of a sequence job run with --shard I/N (every shard writing into OUTPUT_DIR)
 into the outputs of one run: summary.csv and report.json, byte for byte what a single unsharded
 run of the same config writes (with "output": {"timings": false}; with timings on, the seconds
-differ), and for "format": "gltf" sequence.glb, assembled from every shard's positions/ files
-(this reads the glTF input again). It checks first that all N shard reports
+differ), and for "format": "gltf" sequence.glb (for "pc2" or "mdd": sequence.pc2 or
+sequence.mdd and rest.obj), assembled from every shard's positions/ files (this reads the
+input again). It checks first that all N shard reports
 (report.shard-I-of-N.json) are there and complete, that every shard ran the same job (the same
 config apart from "threads" and "frames_in_flight", template and program: their hashes), and
 that every selected frame is in exactly one shard, with its record and outputs. The shard files

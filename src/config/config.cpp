@@ -32,19 +32,28 @@ std::vector<std::string> keys_only_in() {
 
 void validate_input(const json& input, const InputOptions& in) {
   if (in.synthetic) check_synthetic_options(*in.synthetic);
+  const std::optional<PointCacheInput> cache = in.point_cache();
   GltfInputOptions gltf_keys;
   if (!has(input, "gltf"))
     for (const std::string& key : keys_of(entries_of(gltf_keys)))
-      if (has(input, key))
+      if (has(input, key) && !(cache && key == "mesh"))
         fail_at("input." + key,
-                "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
-  const int given =
-      int(has(input, "frames")) + int(has(input, "synthetic")) + int(has(input, "gltf"));
+                "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)" +
+                    std::string(key == "mesh" ? "; or the mesh of a \"pc2\" or \"mdd\" cache"
+                                              : ""));
+  const int given = int(has(input, "frames")) + int(has(input, "synthetic")) +
+                    int(has(input, "gltf")) + int(has(input, "pc2")) + int(has(input, "mdd"));
   if (given == 0)
     fail_at("input",
-            "missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated sequence) or "
-            "\"gltf\" (a glTF animation)");
-  if (given > 1) fail_at("input", "give only one of \"frames\", \"synthetic\" and \"gltf\"");
+            "missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated sequence), "
+            "\"gltf\" (a glTF animation), or \"pc2\" or \"mdd\" (a point cache, with its "
+            "\"mesh\")");
+  if (given > 1)
+    fail_at("input", "give only one of \"frames\", \"synthetic\", \"gltf\", \"pc2\" and \"mdd\"");
+  if (cache && cache->mesh.empty())
+    fail_at("input.mesh",
+            std::string("missing (the mesh the ") + (in.pc2 ? "\"pc2\"" : "\"mdd\"") +
+                " cache's points belong to: a .obj, .ply or .off with its vertex count)");
 }
 
 // The rules across keys of the sequence job (the tables check each key on its own).
@@ -53,7 +62,8 @@ void validate(const json& doc, const SequenceJobOptions& c) {
   const json& templ = member(doc, "template");
   if (has(templ, "frame") && has(templ, "mesh"))
     fail_at("template", "give \"frame\" or \"mesh\", not both");
-  if (has(templ, "mesh") && c.templ.optimize)
+  const bool cache_mesh = c.input.point_cache() && !has(templ, "frame");  // the template
+  if ((has(templ, "mesh") || cache_mesh) && c.templ.optimize)
     fail_at(
         "template.optimize",
         "only applies to a template \"frame\" (with a rest \"mesh\", every frame is optimized)");
@@ -70,6 +80,20 @@ void validate(const json& doc, const SequenceJobOptions& c) {
             "output keeps; use \"obj\" for OBJ frames");
   if (has(doc.at("output"), "gltf") && c.output.format != OutputFormat::Gltf)
     fail_at("output.gltf", "only applies to output.format \"gltf\"");
+  if (has(doc.at("output"), "point_cache") && !point_cache_format(c.output.format))
+    fail_at("output.point_cache", "only applies to output.format \"pc2\" or \"mdd\"");
+  if (c.output.format == OutputFormat::Pc2 && c.output.on_failure == OnFailure::Skip)
+    fail_at("output.on_failure",
+            "\"skip\" cannot go with output.format \"pc2\": a PC2 cache is sampled at equal "
+            "steps, so a frame left out would shift every later one; use \"copy_input\" (or "
+            "\"mdd\", which stores each frame's time)");
+}
+
+// A point cache input's mesh is the template unless "template" names a frame or a mesh.
+void resolve_template(const json& doc, SequenceJobOptions& c) {
+  const std::optional<PointCacheInput> cache = c.input.point_cache();
+  const json& templ = member(doc, "template");
+  if (cache && !has(templ, "frame") && !has(templ, "mesh")) c.templ.mesh = cache->mesh;
 }
 
 // "input" and "template" of a single-mesh job, whose meaning depends on the job.
@@ -133,6 +157,7 @@ SequenceJobOptions parse_config(const json& document, const fs::path& base_dir) 
   SequenceJobOptions c;
   read_options(document, c, fs::absolute(base_dir).lexically_normal());
   validate(document, c);
+  resolve_template(document, c);
   return c;
 }
 

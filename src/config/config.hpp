@@ -20,9 +20,11 @@ using AnyJobOptions = std::variant<SequenceJobOptions, MeshJobOptions>;
 
 /// Maps a parsed config onto the sequence job's options; relative paths are made absolute
 /// against `base_dir`. Besides the tables' checks: exactly one input kind ("frames", "synthetic",
-/// "gltf"), the glTF keys only with "gltf", a template "frame" or "mesh" (not both; no "mesh"
-/// with a synthetic input), a tube that does not fold onto itself, output.format "gltf" (and
-/// output.gltf) only with a glTF input.
+/// "gltf", "pc2", "mdd"), the glTF keys only with "gltf" ("mesh" also with "pc2" or "mdd", where
+/// it is required), a template "frame" or "mesh" (not both; no "mesh" with a synthetic input), a
+/// tube that does not fold onto itself, output.format "gltf" (and output.gltf) only with a glTF
+/// input, output.point_cache only with "pc2" or "mdd", no "on_failure": "skip" with "pc2". A
+/// point cache's mesh becomes template.mesh unless "template" names a frame or a mesh.
 SequenceJobOptions parse_config(const nlohmann::json& json, const std::filesystem::path& base_dir);
 
 /// The same for a single-mesh job; the sequence job's "input" and "template" keys are refused

@@ -25,7 +25,7 @@ namespace {
 
 }  // namespace
 
-void write_file_atomic(const fs::path& path, std::string_view content) {
+AtomicFileWriter::AtomicFileWriter(const fs::path& path) : path_(path) {
   std::error_code ec;
   if (path.has_parent_path()) {
     fs::create_directories(path.parent_path(), ec);
@@ -34,40 +34,61 @@ void write_file_atomic(const fs::path& path, std::string_view content) {
   }
   // Unique per process and call, so concurrent writers of different files never collide.
   static std::atomic<unsigned long> counter{0};
-  fs::path tmp = path;
-  tmp += "." + temporary_owner() + "." + std::to_string(counter++) + std::string(kTempSuffix);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) fail("cannot create", tmp, errno);
+  tmp_ = path;
+  tmp_ += "." + temporary_owner() + "." + std::to_string(counter++) + std::string(kTempSuffix);
+  fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) fail("cannot create", tmp_, errno);
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (fd_ < 0) return;
+  ::close(fd_);
+  ::unlink(tmp_.c_str());
+}
+
+void AtomicFileWriter::abandon(const char* what, int err) {
+  ::close(fd_);
+  fd_ = -1;
+  ::unlink(tmp_.c_str());
+  fail(what, path_, err);
+}
+
+void AtomicFileWriter::write(std::string_view content) {
+  if (fd_ < 0) throw std::logic_error("AtomicFileWriter::write after commit");
   const char* p = content.data();
   size_t left = content.size();
   while (left > 0) {
-    const ssize_t w = ::write(fd, p, left);
+    const ssize_t w = ::write(fd_, p, left);
     if (w < 0) {
       if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      fail("cannot write", path, err);
+      abandon("cannot write", errno);
     }
     p += w;
     left -= static_cast<size_t>(w);
   }
-  if (::fsync(fd) != 0 && errno != EINVAL) {
-    const int err = errno;
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    fail("cannot flush", path, err);
-  }
+}
+
+void AtomicFileWriter::commit() {
+  if (fd_ < 0) throw std::logic_error("AtomicFileWriter::commit twice");
+  if (::fsync(fd_) != 0 && errno != EINVAL) abandon("cannot flush", errno);
+  const int fd = fd_;
+  fd_ = -1;
   if (::close(fd) != 0) {
     const int err = errno;
-    ::unlink(tmp.c_str());
-    fail("cannot close", path, err);
+    ::unlink(tmp_.c_str());
+    fail("cannot close", path_, err);
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+  if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
     const int err = errno;
-    ::unlink(tmp.c_str());
-    fail("cannot rename temporary file onto", path, err);
+    ::unlink(tmp_.c_str());
+    fail("cannot rename temporary file onto", path_, err);
   }
+}
+
+void write_file_atomic(const fs::path& path, std::string_view content) {
+  AtomicFileWriter file(path);
+  file.write(content);
+  file.commit();
 }
 
 std::string read_file(const fs::path& path) {

@@ -16,6 +16,28 @@ inline constexpr std::string_view kTempSuffix = ".seqmassage-tmp";
 /// writer, so that processes sharing an output folder (shards) never touch each other's.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
+/// A file written atomically in pieces (for outputs too large to hold in memory): the content goes
+/// to the temporary file write_file_atomic uses, which commit() renames over `path`. Destroyed
+/// without commit() (an exception while writing), it removes the temporary file and leaves `path`
+/// as it was. Throws IoError naming the file and the system's reason.
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(const std::filesystem::path& path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+  void write(std::string_view content);
+  /// Flushes, fsyncs and renames the temporary file onto the destination.
+  void commit();
+
+ private:
+  [[noreturn]] void abandon(const char* what, int err);
+
+  std::filesystem::path path_, tmp_;
+  int fd_ = -1;
+};
+
 /// Reads a whole file. Throws IoError naming the file when it cannot be opened or read.
 std::string read_file(const std::filesystem::path& path);
 

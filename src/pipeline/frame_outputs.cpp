@@ -8,6 +8,7 @@
 #include "pipeline/output_distortion.hpp"
 #include "pipeline/output_frames.hpp"
 #include "pipeline/output_iterations.hpp"
+#include "pipeline/output_point_cache.hpp"
 
 namespace sm {
 
@@ -15,6 +16,7 @@ const std::vector<OutputEntry>& output_registry() {
   static const std::vector<OutputEntry> registry = {
       output<ObjFramesOutput>(),
       output<GlbFramesOutput>(),
+      output<PointCacheOutput>(),
       output<DistortionCsvOutput>(),
       output<ColoredPlyOutput>(),
       output<CheckerObjOutput>(),

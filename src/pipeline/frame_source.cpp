@@ -10,6 +10,7 @@
 #include "io/sha256.hpp"
 #include "mesh/coordinate_limit.hpp"
 #include "mesh/errors.hpp"
+#include "pipeline/point_cache_source.hpp"
 #include "pipeline/synthetic.hpp"
 
 namespace sm {
@@ -268,6 +269,8 @@ std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& c
     if (gltf) *gltf = source->asset();
     return source;
   }
+  if (const std::optional<PointCacheInput> cache = in.point_cache())
+    return make_point_cache_source(*cache);
   return std::make_shared<ObjFolderSource>(in.frames);
 }
 

@@ -69,9 +69,11 @@ class FrameSource {
 
   /// Where the clean frames of a generated sequence are written, empty if there are none.
   virtual std::filesystem::path ground_truth_dir() const { return {}; }
+  /// The header of the point cache the frames are read from (PC2, MDD), or null.
+  virtual const PointCacheHeader* point_cache() const { return nullptr; }
 };
 
-/// The source of the config's input ("frames", "synthetic" or "gltf"). A glTF file is loaded,
+/// The source of the config's input ("frames", "synthetic", "gltf", "pc2" or "mdd"). A glTF file is loaded,
 /// welded and checked here; other sources list or generate nothing yet. Throws like the loaders:
 /// IoError, InputError naming the file and element, ConfigError for invalid values. For a glTF
 /// input, `gltf` (if given) receives the loaded asset, which an output that rebuilds it (the

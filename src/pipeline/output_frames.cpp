@@ -12,14 +12,22 @@ namespace sm {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-namespace {
-
-// positions/<frame name>.bin, relative to output.dir: a frame's corrected positions for the GLB.
 fs::path positions_file(const std::string& frame_name) {
   return fs::path("positions") / fs::path(frame_name).replace_extension(".bin");
 }
 
-}  // namespace
+Positions read_positions_file(const fs::path& output_dir, const std::string& frame_name,
+                              Eigen::Index n) {
+  const fs::path file = output_dir / positions_file(frame_name);
+  const std::string bytes = read_file(file);
+  if (bytes.size() != size_t(n) * 3 * sizeof(double))
+    throw IoError("'" + file.string() + "': " + std::to_string(bytes.size()) +
+                  " bytes, but the corrected positions of " + std::to_string(n) +
+                  " vertices take " + std::to_string(size_t(n) * 3 * sizeof(double)));
+  Positions V(n, 3);
+  std::memcpy(V.data(), bytes.data(), bytes.size());
+  return V;
+}
 
 // ---------------------------------------------------------------------------------------------
 // OBJ files.
@@ -148,15 +156,7 @@ OutputFinish GlbFramesOutput::finish(const FinishedFrames& done) const {
       glb, written,
       [&](int k) {
         if (k != next++) throw std::logic_error("GlbFramesOutput: frames read out of order");
-        const fs::path file = config_.output.dir / positions_file(done.names[size_t(k)]);
-        const std::string bytes = read_file(file);
-        if (bytes.size() != size_t(n) * 3 * sizeof(double))
-          throw IoError("'" + file.string() + "': " + std::to_string(bytes.size()) +
-                        " bytes, but the corrected positions of " + std::to_string(n) +
-                        " vertices take " + std::to_string(size_t(n) * 3 * sizeof(double)));
-        Positions V(n, 3);
-        std::memcpy(V.data(), bytes.data(), bytes.size());
-        return V;
+        return read_positions_file(config_.output.dir, done.names[size_t(k)], n);
       },
       config_.output.gltf);
   return {{}, {"sequence.glb"}};

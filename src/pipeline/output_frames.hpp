@@ -6,6 +6,15 @@
 
 namespace sm {
 
+/// positions/<frame name>.bin, relative to output.dir: a frame's corrected positions (exact
+/// little-endian doubles, n×3 row-major) that a whole-sequence output is assembled from.
+std::filesystem::path positions_file(const std::string& frame_name);
+
+/// The positions file of frame `frame_name` under `output_dir`, read back (n vertices). Throws
+/// IoError when it is missing or has the wrong size.
+Positions read_positions_file(const std::filesystem::path& output_dir,
+                              const std::string& frame_name, Eigen::Index n);
+
 /// "format": "obj": frames/<source name>; an OBJ input's unchanged frame byte for byte, other
 /// frames with the input's statements and new positions.
 class ObjFramesOutput : public FrameOutput {

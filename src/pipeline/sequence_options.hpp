@@ -11,6 +11,7 @@
 #include "geometry/distance.hpp"
 #include "io/gltf_load.hpp"
 #include "io/gltf_write.hpp"
+#include "io/point_cache.hpp"
 #include "massage/massage.hpp"
 #include "mesh/frame_selection.hpp"
 #include "mesh/options_table.hpp"
@@ -24,14 +25,70 @@
 
 namespace sm {
 
-/// "input": exactly one of "frames", "synthetic" and "gltf", and "range".
+/// A point cache input, {"pc2": file, "mesh": file} (or "mdd"): the cache gives every frame's
+/// positions, the mesh their connectivity, texture coordinates and materials.
+template <PointCacheFormat Format>
+struct PointCacheInputOptions {
+  static constexpr PointCacheFormat format = Format;
+  std::filesystem::path file;  ///< the .pc2 or .mdd file
+  std::filesystem::path mesh;  ///< .obj, .ply or .off with the cache's vertex count
+};
+using Pc2InputOptions = PointCacheInputOptions<PointCacheFormat::Pc2>;
+using MddInputOptions = PointCacheInputOptions<PointCacheFormat::Mdd>;
+
+/// The keys sit in the sequence job's "input"; "pc2" (or "mdd") comes first: it says the input is
+/// a point cache.
+template <PointCacheFormat Format>
+const Fields<PointCacheInputOptions<Format>>& point_cache_input_fields(std::string_view key,
+                                                                         std::string_view doc,
+                                                                         std::string_view mesh) {
+  using O = PointCacheInputOptions<Format>;
+  static const Fields<O> fields = {field<&O::file>(key, any_value(), doc),
+                                   field<&O::mesh>("mesh", any_value(), mesh)};
+  return fields;
+}
+template <>
+inline const Fields<Pc2InputOptions>& fields_of<Pc2InputOptions>() {
+  return point_cache_input_fields<PointCacheFormat::Pc2>(
+      "pc2",
+      "a PC2 point cache (little-endian, `POINTCACHE2`): one frame per sample, on the "
+      "connectivity of `input.mesh`; see [point caches](point-caches.md)",
+      "with `input.pc2` (required there): the mesh (`.obj`, `.ply` or `.off`, the cache's vertex "
+      "count) that gives the frames' triangles, texture coordinates and materials; the template "
+      "unless `template` says otherwise");
+}
+template <>
+inline const Fields<MddInputOptions>& fields_of<MddInputOptions>() {
+  return point_cache_input_fields<PointCacheFormat::Mdd>(
+      "mdd",
+      "an MDD point cache (big-endian, with frame times): one frame per cache frame, on the "
+      "connectivity of `input.mesh`",
+      "with `input.mdd` (required there): the mesh, as for `input.pc2`");
+}
+
+/// The point cache of an input, whichever its format.
+struct PointCacheInput {
+  PointCacheFormat format = PointCacheFormat::Pc2;
+  std::filesystem::path file, mesh;
+};
+
+/// "input": exactly one of "frames", "synthetic", "gltf", "pc2" and "mdd", and "range".
 struct InputOptions {
   std::filesystem::path frames;  ///< a folder of OBJ files, one per frame, in natural order
   /// Generate the frames into <output.dir>/input and the clean frames (the ground truth) into
   /// <output.dir>/ground_truth, then process them like a folder.
   std::optional<SyntheticOptions> synthetic;
   std::optional<GltfInputOptions> gltf;  ///< keys "gltf", "mesh", "animation", "fps"
+  std::optional<Pc2InputOptions> pc2;    ///< keys "pc2", "mesh"
+  std::optional<MddInputOptions> mdd;    ///< keys "mdd", "mesh"
   FrameRange range;
+
+  /// The point cache input ("pc2" or "mdd"), if that is the input.
+  std::optional<PointCacheInput> point_cache() const {
+    if (pc2) return PointCacheInput{pc2->format, pc2->file, pc2->mesh};
+    if (mdd) return PointCacheInput{mdd->format, mdd->file, mdd->mesh};
+    return std::nullopt;
+  }
 };
 
 template <>
@@ -48,6 +105,8 @@ inline const Fields<InputOptions>& fields_of<InputOptions>() {
                            "(ground truth) to `<output.dir>/ground_truth`, then processed like a "
                            "folder; `{}` takes every default"),
       inline_field<&O::gltf>("a glTF animation"),
+      inline_field<&O::pc2>("a PC2 point cache on a mesh"),
+      inline_field<&O::mdd>("an MDD point cache on a mesh"),
       field<&O::range>("range", any_value(),
                        "which frames to process, like a Python slice `[start:stop:step]` of the "
                        "frames in natural order; `--frames A:B[:STEP]` replaces it"),
@@ -83,9 +142,39 @@ inline const Fields<TemplateOptions>& fields_of<TemplateOptions>() {
 enum class OutputFormat {
   Obj,   ///< frames/<frame name>.obj
   Gltf,  ///< sequence.glb, one morph target per frame (glTF input only)
+  Pc2,   ///< sequence.pc2 and rest.obj
+  Mdd,   ///< sequence.mdd and rest.obj
 };
 inline constexpr EnumName<OutputFormat> kOutputFormatNames[] = {{"obj", OutputFormat::Obj},
-                                                                {"gltf", OutputFormat::Gltf}};
+                                                                {"gltf", OutputFormat::Gltf},
+                                                                {"pc2", OutputFormat::Pc2},
+                                                                {"mdd", OutputFormat::Mdd}};
+
+/// The point cache format of an output format, if it is one.
+inline std::optional<PointCacheFormat> point_cache_format(OutputFormat format) {
+  if (format == OutputFormat::Pc2) return PointCacheFormat::Pc2;
+  if (format == OutputFormat::Mdd) return PointCacheFormat::Mdd;
+  return std::nullopt;
+}
+
+/// "output.point_cache": how a PC2 or MDD output states its frames' times.
+struct PointCacheOutputOptions {
+  /// Frames per second of an input without frame times (OBJ folder, synthetic, PC2): MDD frame
+  /// times are frame numbers / fps.
+  double fps = 24.0;
+};
+
+template <>
+inline const Fields<PointCacheOutputOptions>& fields_of<PointCacheOutputOptions>() {
+  using O = PointCacheOutputOptions;
+  static const Fields<O> fields = {
+      field<&O::fps>("fps", left_open(0, 1e6),
+                     "MDD frame times (seconds) of an input without times (OBJ folder, "
+                     "synthetic, PC2): the frame number (a PC2's start + index × sample rate, "
+                     "else the index) / fps; glTF and MDD inputs keep their times"),
+  };
+  return fields;
+}
 
 /// What a frame that fails its numerical checks gets as output ("output.on_failure").
 enum class OnFailure {
@@ -99,6 +188,7 @@ struct OutputOptions {
   std::filesystem::path dir;
   OutputFormat format = OutputFormat::Obj;
   GltfWriteOptions gltf;
+  PointCacheOutputOptions point_cache;
   bool per_triangle_csv = false;
   bool timings = true;  ///< false: 0 seconds, so that a run reproduces every output byte
   OnFailure on_failure = OnFailure::CopyInput;
@@ -118,9 +208,15 @@ inline const Fields<OutputOptions>& fields_of<OutputOptions>() {
       field<&O::format>("format", choice(kOutputFormatNames),
                         "`\"obj\"`: `frames/<input name>.obj`; `\"gltf\"`: `sequence.glb`, one "
                         "morph target per frame (needs `input.gltf`, whose mesh, materials and "
-                        "textures it keeps)"),
+                        "textures it keeps); `\"pc2\"`, `\"mdd\"`: `sequence.pc2` / "
+                        "`sequence.mdd`, every frame's positions as float32, and `rest.obj`, the "
+                        "template mesh the cache applies to"),
       field<&O::gltf>("gltf", any_value(), "the GLB's layout; only with `\"format\": \"gltf\"`")
           .written_if([](const O& o) { return o.format == OutputFormat::Gltf; }),
+      field<&O::point_cache>("point_cache", any_value(),
+                             "the cache's frame times; only with `\"format\": \"pc2\"` or "
+                             "`\"mdd\"`")
+          .written_if([](const O& o) { return point_cache_format(o.format).has_value(); }),
       field<&O::per_triangle_csv>("per_triangle_csv", any_value(),
                                   "also write `distortion/<frame name>.csv`: "
                                   "`triangle,shear_before,shear_after` (eq. 8)"),
@@ -176,8 +272,8 @@ inline const Fields<SequenceJobOptions>& fields_of<SequenceJobOptions>() {
       field<&O::job>("job", choice(kSequenceJobNames), "the kind of job")
           .required("the kind of job: \"sequence\""),
       field<&O::input>("input", any_value(),
-                       "the frames: exactly one of `input.frames`, `input.synthetic` and "
-                       "`input.gltf`")
+                       "the frames: exactly one of `input.frames`, `input.synthetic`, "
+                       "`input.gltf`, `input.pc2` and `input.mdd`")
           .required("\"frames\": a folder of OBJ frames, \"synthetic\" or \"gltf\": a glTF "
                     "animation"),
       field<&O::templ>("template", any_value(),

@@ -201,14 +201,14 @@ TEST_CASE("glTF: a 1.6 KB file claiming 4e8 or 2^31-1 elements is refused cheapl
   const fs::path dir =
       fs::temp_directory_path() / ("seqmassage-count-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  for (const char* count : {"400000000", "2147483647"}) {
+  for (const char* claimed : {"400000000", "2147483647"}) {
     std::string doc = R"({"asset": {"version": "2.0"},
       "buffers": [{"byteLength": 68, "uri": "data:application/octet-stream;base64,)" + data +
                       R"("}],
       "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36,
                        "byteLength": 8}, {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
       "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": )" +
-                      std::string(count) + R"(},
+                      std::string(claimed) + R"(},
         {"bufferView": 1, "componentType": 5126, "type": "SCALAR", "count": 2,
          "min": [0], "max": [1]},
         {"bufferView": 2, "componentType": 5126, "type": "VEC3", "count": 2}],
