@@ -23,6 +23,17 @@ stage "Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"
 stage "Release tests"
 
+# The Blender add-on, headless (tests/blender/run.sh); 3: skipped (no blender, or no Python
+# module), the script says why.
+status=0
+bash tests/blender/run.sh || status=$?
+if [ "$status" = 3 ]; then
+  echo "test: Blender add-on stage SKIPPED (see above)"
+elif [ "$status" != 0 ]; then
+  exit "$status"
+fi
+stage "Blender add-on"
+
 # The cluster scripts as users submit them: through a local Slurm cluster (installed and started
 # by tools/slurm_local.sh), and the Kubernetes manifest (kubectl, offline). 3: skipped, the
 # script says why.

@@ -6,7 +6,7 @@ bl_info = {
     "author": "seqmassage contributors",
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
-    "location": "Properties > Object Data > Mesh Massage",
+    "location": "Properties > Object > Mesh Massage",
     "description": "Correct texture swimming in shape keys and PC2/MDD point caches "
                    "(Mesh Massage)",
     "category": "Animation",

@@ -1,4 +1,4 @@
-"""The "Mesh Massage" panel in the Properties editor's Object Data tab."""
+"""The "Mesh Massage" panel in the Properties editor's Object tab (the options are the object's)."""
 import bpy
 
 from . import loader, operators, properties, schema
@@ -7,7 +7,7 @@ from . import loader, operators, properties, schema
 class _Panel:
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
-    bl_context = "data"
+    bl_context = "object"
 
     @classmethod
     def poll(cls, context):

@@ -86,12 +86,17 @@ def normalize(entry):
     for key in ("choices", "names", "values"):
         if key in e and e[key]:
             info["choices"] = [c if isinstance(c, str) else c[0] for c in e[key]]
-    if e.get("auto") or default == "auto":
+    for key, bound in (("min", "lo"), ("max", "hi")):  # explicit bounds over the range's text
+        if key in e:
+            info[bound] = float(e[key]) if e[key] is not None else (
+                -math.inf if bound == "lo" else math.inf)
+    if e.get("auto") or default == "auto" or "auto" in typ:
         info["auto"] = True
     doc = str(_first(e, "doc", "description", "help", default=""))
     doc = re.sub(r"`([^`]*)`", r"\1", doc)  # Markdown code spans read as plain text in a tooltip
     kind = None
-    if name in OPERATOR_KEYS or "array" in typ or "list" in typ or "path" in typ:
+    if (name in OPERATOR_KEYS or "array" in typ or "list" in typ or "path" in typ
+            or "none" in typ):  # lists, paths and optional values: not a Blender property
         kind = None
     elif info.get("auto") and ("number" in typ or "float" in typ or "double" in typ):
         kind = "auto_number"
