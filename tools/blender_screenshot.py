@@ -1,6 +1,7 @@
 """Run by tools/blender_screenshot.sh inside Blender with a display (Xvfb): a drifted tube with
-shape keys and a Mesh Cache modifier, the add-on's panel open in a full-window Properties editor
-(Object tab), then that editor saved as PNG (argument after --: the PNG's path) and Blender quit."""
+shape keys and a Mesh Cache modifier, the add-on's panel open in a Properties editor (Object
+tab) in place of the 3D viewport, then that editor saved as PNG (the argument after --) and
+Blender quit."""
 import os
 import sys
 
@@ -14,7 +15,6 @@ OUT = sys.argv[sys.argv.index("--") + 1]
 
 
 def scene():
-    bpy.context.preferences.view.show_splash = False
     for obj in list(bpy.data.objects):
         bpy.data.objects.remove(obj)
     support.enable_addon()
@@ -32,18 +32,29 @@ def scene():
 
 
 def maximize():
+    """The 3D viewport, the largest area, becomes a Properties editor on the Object tab (an area's
+    type set directly: screen operators run from a timer can crash Blender)."""
     window = bpy.context.window_manager.windows[0]
-    area = next(a for a in window.screen.areas if a.type == "PROPERTIES")
+    area = max(window.screen.areas, key=lambda a: a.width * a.height)
+    area.type = "PROPERTIES"
+    bpy.app.timers.register(show_object_tab, first_interval=1.0)
+
+
+def show_object_tab():
+    area = largest()
     area.spaces.active.context = "OBJECT"
-    with bpy.context.temp_override(window=window, area=area):
-        bpy.ops.screen.screen_full_area()
+    area.tag_redraw()
     bpy.app.timers.register(shoot, first_interval=2.0)
+
+
+def largest():
+    window = bpy.context.window_manager.windows[0]
+    return max(window.screen.areas, key=lambda a: a.width * a.height)
 
 
 def shoot():
     window = bpy.context.window_manager.windows[0]
-    area = next(a for a in window.screen.areas if a.type == "PROPERTIES")
-    with bpy.context.temp_override(window=window, area=area):
+    with bpy.context.temp_override(window=window, area=largest()):
         bpy.ops.screen.screenshot_area(filepath=OUT)
     print("blender_screenshot: wrote", OUT, flush=True)
     bpy.ops.wm.quit_blender()
@@ -60,4 +71,6 @@ def start():
         bpy.ops.wm.quit_blender()
 
 
+# Before the window opens: no splash screen over the panel.
+bpy.context.preferences.view.show_splash = False
 bpy.app.timers.register(start, first_interval=1.0)

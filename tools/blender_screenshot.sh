@@ -14,8 +14,8 @@ rm -f "$out"
 export SEQMASSAGE_ROOT="$root"
 unset PYTHONPATH
 # Blender's UI needs OpenGL 3.3: Mesa's software renderer on the virtual display gives it.
-xvfb-run -a -s "-screen 0 760x1000x24" \
-  blender --factory-startup --window-geometry 0 0 760 1000 --python "$root/tools/blender_screenshot.py" \
-  -- "$out"
+xvfb-run -a -s "-screen 0 900x1100x24" \
+  blender --factory-startup --window-geometry 0 0 900 1100 \
+  --python "$root/tools/blender_screenshot.py" -- "$out"
 [ -s "$out" ] || { echo "blender_screenshot: no $out written (see above)" >&2; exit 1; }
 echo "blender_screenshot: $out"

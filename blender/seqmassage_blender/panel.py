@@ -1,4 +1,4 @@
-"""The "Mesh Massage" panel in the Properties editor's Object tab (the options are the object's)."""
+"""The "Mesh Massage" panel in the Properties editor's Object tab (the options are per object)."""
 import bpy
 
 from . import loader, operators, properties, schema
@@ -60,7 +60,7 @@ class SEQMASSAGE_PT_massage(_Panel, bpy.types.Panel):
         row.enabled = opts.weights_supported
         row.prop_search(opts, "vertex_group", obj, "vertex_groups", text="Vertex Weights")
         if not opts.weights_supported:
-            col.label(text="Vertex weights need the weights feature", icon="INFO")
+            col.label(text="Weights need a newer module", icon="INFO")
         col.prop(opts, "keep_original")
         layout.separator()
         keys = obj.data.shape_keys
