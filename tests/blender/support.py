@@ -49,7 +49,10 @@ def enable_addon():
     bpy.utils.refresh_script_paths()
     import addon_utils
 
-    addon_utils.enable(ADDON, default_set=True, handle_error=lambda e: (_ for _ in ()).throw(e))
+    def fail(error):
+        raise error
+
+    addon_utils.enable(ADDON, default_set=True, handle_error=fail)
     check(ADDON in bpy.context.preferences.addons, f"add-on {ADDON} enabled")
     return sys.modules[ADDON]
 
