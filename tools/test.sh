@@ -23,6 +23,16 @@ stage "Release build"
 ctest --test-dir build --output-on-failure -j"$jobs"
 stage "Release tests"
 
+# The Python module's tests (pytest), against the module the Release build wrote to build/python
+# and the system Python it was built for; skipped only when CMake did not build the module.
+if ls build/python/seqmassage*.so >/dev/null 2>&1; then
+  PYTHONPATH=build/python /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
+  stage "Python module tests"
+else
+  echo "test: Python module tests SKIPPED: the module was not built (CMake found no Python 3" \
+    "headers or pybind11: bash tools/setup.sh installs python3-dev and pybind11-dev)"
+fi
+
 # The Blender add-on, headless (tests/blender/run.sh); 3: skipped (no blender, or no Python
 # module), the script says why.
 status=0
@@ -48,7 +58,7 @@ fi
 
 if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEQMASSAGE_ASAN=ON \
-    -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_UNITY_BUILD=ON >/dev/null
+    -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_PYTHON=OFF -DSEQMASSAGE_UNITY_BUILD=ON >/dev/null
   cmake --build build-asan -j"$jobs"
   stage "ASan+UBSan build"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

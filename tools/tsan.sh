@@ -74,7 +74,7 @@ fi
 
 # 2. seqmassage with ThreadSanitizer, against that oneTBB.
 cmake -S . -B "$build" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DSEQMASSAGE_TSAN=ON -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_UNITY_BUILD=ON -DTBB_DIR="$tbb_prefix/lib/cmake/TBB" >/dev/null
+  -DSEQMASSAGE_TSAN=ON -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_PYTHON=OFF -DSEQMASSAGE_UNITY_BUILD=ON -DTBB_DIR="$tbb_prefix/lib/cmake/TBB" >/dev/null
 if [ ${#suites[@]} -gt 0 ]; then
   cmake --build "$build" -j"$jobs" --target "${suites[@]}" seqmassage
 else

@@ -1,0 +1,44 @@
+#pragma once
+/// The Python module's conversions (internal to src/python): numpy arrays to the library's mesh
+/// types and back, Python values to JSON (the config reader's input) and back.
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include "mesh/mesh.hpp"
+
+namespace sm::python {
+
+namespace py = pybind11;
+
+/// A C-contiguous float64 array; pybind11 converts (copies) only an array of another layout or
+/// dtype, or a nested list.
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// `array` (n×3) as positions: one copy into the library's matrix, which owns its data (the
+/// engine keeps the meshes it is given). Throws InputError naming `what` for another shape.
+Positions to_positions(const DoubleArray& array, const char* what);
+
+/// `object` (m×3, any integer dtype; int32 C-contiguous is read in place) as triangles. Throws
+/// InputError naming `what` for another shape, a non-integer dtype or an index outside
+/// [0, 2^31 − 1] (validate_mesh checks it against the vertex count).
+Triangles to_triangles(const py::handle& object, const char* what);
+
+/// A new numpy array (n×3 float64) holding a copy of `V`.
+py::array_t<double> to_numpy(const Positions& V);
+/// A new numpy array (n float64) holding a copy of `x`.
+py::array_t<double> to_numpy(const Eigen::VectorXd& x);
+
+/// A Python value as JSON: dict (str keys), list, tuple, str, bool, int, float, None, a numpy
+/// array or scalar (through tolist()/item()), an os.PathLike (its path). Throws ConfigError
+/// "<path>: ..." for anything else.
+nlohmann::json to_json(const py::handle& value, const std::string& path);
+/// Keyword arguments as a JSON object.
+nlohmann::json to_json(const py::kwargs& kwargs, const std::string& path);
+
+/// JSON as a Python value (objects as dicts in key order, arrays as lists).
+py::object from_json(const nlohmann::json& value);
+
+}  // namespace sm::python

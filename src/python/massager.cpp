@@ -1,0 +1,195 @@
+/// seqmassage.Massager: a Massager built once from a template, run on frames from any number of
+/// Python threads at once (Massager::run is const and its state read-only; the GIL is released
+/// while it runs).
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <pybind11/functional.h>
+
+#include "io/options_json.hpp"
+#include "massage/massage.hpp"
+#include "mesh/errors.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+
+namespace sm::python {
+namespace {
+
+namespace fs = std::filesystem;
+
+py::dict iteration_dict(const IterationStats& it) {
+  py::dict d;
+  d["iteration"] = it.iteration;
+  d["mu"] = it.mu;
+  d["energy"] = it.energy;
+  d["max_dist_m_to_n"] = it.max_dist_m_to_n;
+  d["rms_dist_m_to_n"] = it.rms_dist_m_to_n;
+  d["max_dist_n_to_m"] = it.max_dist_n_to_m;
+  d["rms_dist_n_to_m"] = it.rms_dist_n_to_m;
+  d["max_move"] = it.max_move;
+  d["solver_iterations"] = it.solver_iterations;
+  d["solver_residual"] = it.solver_residual;
+  d["exact_queries"] = it.exact_queries;
+  d["seconds_closest"] = it.seconds_closest;
+  d["seconds_assemble"] = it.seconds_assemble;
+  d["seconds_solve"] = it.seconds_solve;
+  return d;
+}
+
+// The result's positions as a numpy array that owns them (no copy).
+py::array_t<double> take_positions(Positions&& V) {
+  auto* owned = new Positions(std::move(V));
+  py::capsule free_it(owned, [](void* p) { delete static_cast<Positions*>(p); });
+  return py::array_t<double>({static_cast<py::ssize_t>(owned->rows()), py::ssize_t{3}},
+                             owned->data(), free_it);
+}
+
+/// What Massager.run returns.
+struct Result {
+  py::array_t<double> vertices;
+  bool ok = true;
+  std::optional<std::string> failure;
+  py::list iterations;
+  bool stopped_early = false;
+  int folded_triangles = 0;
+  int target_fallback_vertices = 0;
+  double seconds = 0.0;
+};
+
+Result to_result(MassageResult&& r) {
+  Result out;
+  out.ok = r.ok;
+  if (!r.ok) out.failure = r.failure;
+  for (const IterationStats& it : r.iterations) out.iterations.append(iteration_dict(it));
+  out.stopped_early = r.stopped_early;
+  out.folded_triangles = r.folded_triangles;
+  out.target_fallback_vertices = r.target_fallback_vertices;
+  out.seconds = r.seconds;
+  out.vertices = take_positions(std::move(r.V));
+  return out;
+}
+
+class PyMassager {
+ public:
+  PyMassager(const DoubleArray& template_vertices, const py::handle& triangles,
+             const py::kwargs& massage) {
+    MassageOptions options;
+    // The config's reader on the config's "massage" object: the same keys, checks and messages.
+    read_options(to_json(massage, "massage"), options, fs::current_path(), "massage");
+    TriMesh templ{to_positions(template_vertices, "template_vertices"),
+                  to_triangles(triangles, "triangles")};
+    py::gil_scoped_release unlocked;
+    engine_ = std::make_shared<const Massager>(templ, std::move(options), "template");
+  }
+
+  Result run(const DoubleArray& vertices, const py::object& reference,
+             const std::optional<std::function<void(py::dict, py::array_t<double>)>>& observe)
+      const {
+    const Massager& engine = *engine_;
+    const SampleKind samples = engine.options().samples;
+    std::optional<TriMesh> other;  // a reference mesh of its own (remesh use)
+    if (!reference.is_none()) {
+      if (!py::isinstance<py::tuple>(reference) && !py::isinstance<py::list>(reference))
+        throw InputError("reference: expected None or a mesh (vertices, triangles)");
+      const py::sequence mesh = reference.cast<py::sequence>();
+      if (mesh.size() != 2)
+        throw InputError("reference: expected a mesh (vertices, triangles), got " +
+                         std::to_string(mesh.size()) + " items");
+      other.emplace(TriMesh{to_positions(mesh[0].cast<DoubleArray>(), "reference vertices"),
+                            to_triangles(mesh[1], "reference triangles")});
+    }
+    Positions start;
+    if (other) start = to_positions(vertices, "vertices");
+    TriMesh frame;  // the sequence use: the frame is its own reference
+    if (!other) frame = TriMesh{to_positions(vertices, "vertices"), engine.triangles()};
+    const Eigen::Index rows = other ? start.rows() : frame.V.rows();
+    if (rows != engine.num_vertices())
+      throw InputError("vertices: " + std::to_string(rows) + " rows, the template has " +
+                       std::to_string(engine.num_vertices()) + " vertices");
+
+    IterationObserver observer;
+    if (observe)
+      observer = [&observe](const IterationStats& stats, const Positions& V) {
+        py::gil_scoped_acquire locked;
+        (*observe)(iteration_dict(stats), to_numpy(V));
+      };
+    MassageResult result;
+    {
+      py::gil_scoped_release unlocked;
+      if (other) {
+        // As the single-mesh jobs build theirs; with the template's triangles, as a frame's.
+        const bool same = other->F.rows() == engine.triangles().rows() &&
+                          other->F == engine.triangles();
+        const Reference ref(std::move(*other), samples, "reference",
+                            same ? engine.shared_topology() : nullptr,
+                            same ? &engine.template_bvh() : nullptr);
+        result = engine.run(start, ref, observer);
+      } else {
+        // Exactly as the sequence job does for a frame (pipeline/sequence_job.cpp): the frame is
+        // the reference, with the template's topology and a refit of its BVH; the start is the
+        // reference's copy of the positions.
+        const Reference ref(std::move(frame), samples, "vertices", engine.shared_topology(),
+                            &engine.template_bvh());
+        result = engine.run(ref.mesh().V, ref, observer);
+      }
+    }
+    return to_result(std::move(result));
+  }
+
+  int num_vertices() const { return engine_->num_vertices(); }
+  int num_triangles() const { return static_cast<int>(engine_->triangles().rows()); }
+  py::object options() const { return from_json(write_options(engine_->options())); }
+
+ private:
+  std::shared_ptr<const Massager> engine_;
+};
+
+}  // namespace
+
+void bind_massager(py::module_& m) {
+  py::class_<Result>(m, "Result", "What Massager.run returns.")
+      .def_readonly("vertices", &Result::vertices,
+                    "optimized positions (n×3 float64); the start positions if not ok")
+      .def_readonly("ok", &Result::ok, "False: numerical failure, see failure")
+      .def_readonly("failure", &Result::failure, "why the run failed, or None")
+      .def_readonly("iterations", &Result::iterations,
+                    "one dict per outer iteration: iteration, mu, energy, max_dist_m_to_n, "
+                    "rms_dist_m_to_n, max_dist_n_to_m, rms_dist_n_to_m, max_move, "
+                    "solver_iterations, solver_residual, exact_queries, seconds_closest, "
+                    "seconds_assemble, seconds_solve")
+      .def_readonly("stopped_early", &Result::stopped_early,
+                    "the movement tolerance was met before the last iteration")
+      .def_readonly("folded_triangles", &Result::folded_triangles,
+                    "triangles whose normal opposes the reference's where they land")
+      .def_readonly("target_fallback_vertices", &Result::target_fallback_vertices,
+                    "with shape_target \"template\": vertices that keep the target 0")
+      .def_readonly("seconds", &Result::seconds, "wall time of the run")
+      .def("__repr__", [](const Result& r) {
+        return "<seqmassage.Result ok=" + std::string(r.ok ? "True" : "False") +
+               " iterations=" + std::to_string(py::len(r.iterations)) + ">";
+      });
+
+  py::class_<PyMassager>(m, "Massager",
+                         "The optimizer for one template: built once, run on any number of "
+                         "frames, from several threads at once.")
+      .def(py::init<const DoubleArray&, const py::handle&, const py::kwargs&>(),
+           py::arg("template_vertices"), py::arg("triangles"),
+           "Massager(template_vertices, triangles, **massage): n×3 float64 positions and m×3 "
+           "integer triangles of the template T; the keyword arguments are the keys of the "
+           "config's \"massage\" object (massage_keys()), checked the same way (ValueError).")
+      .def("run", &PyMassager::run, py::arg("vertices"), py::arg("reference") = py::none(),
+           py::arg("on_iteration") = py::none(),
+           "run(vertices, reference=None, on_iteration=None) -> Result: optimizes the mesh with "
+           "the template's triangles starting at `vertices` (n×3); the reference surface is the "
+           "frame itself (None, the sequence job's use) or a mesh (vertices, triangles) (the "
+           "remesh job's use). on_iteration(stats, vertices), if given, is called after every "
+           "iteration. The GIL is released while it runs.")
+      .def_property_readonly("num_vertices", &PyMassager::num_vertices)
+      .def_property_readonly("num_triangles", &PyMassager::num_triangles)
+      .def_property_readonly("options", &PyMassager::options,
+                             "every massage key with its value, as a dict");
+}
+
+}  // namespace sm::python
