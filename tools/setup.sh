@@ -2,7 +2,8 @@
 # Installs whatever seqmassage needs that this Debian machine lacks (apt-get), and nothing else.
 # Safe to run again: what is present is skipped.
 #   bash tools/setup.sh             build and test dependencies, then the optional extras
-#   SEQMASSAGE_SETUP_EXTRAS=0 ...   skip the extras (plots, glTF validator, clang for fuzzing)
+#   SEQMASSAGE_SETUP_EXTRAS=0 ...   skip the extras (plots, glTF validator, clang for fuzzing,
+#                                   Blender)
 # The required packages must install; an extra that cannot be installed only prints a warning
 # (its tests then skip with a message).
 set -euo pipefail
@@ -50,6 +51,10 @@ extra "dpkg-source (oneTBB source for ThreadSanitizer)" "command -v dpkg-source"
 extra "node and npm" "command -v node && command -v npm" nodejs npm
 # kubectl for the Kubernetes manifest's test; Debian's conflicts with other kubectl packages.
 extra "kubectl" "command -v kubectl" kubernetes-client
+# Blender for the add-on's tests (its Debian build runs the system Python 3, as the module
+# does), and a virtual X display for the panel's screenshot (tools/blender_screenshot.sh).
+extra "blender" "command -v blender" blender
+extra "xvfb" "command -v xvfb-run" xvfb
 
 # The Khronos glTF-Validator (npm package), used by the glTF output tests when present.
 if command -v npm >/dev/null 2>&1 && [ ! -d "$root/tools/node_modules/gltf-validator" ]; then

@@ -33,6 +33,17 @@ else
     "headers or pybind11: bash tools/setup.sh installs python3-dev and pybind11-dev)"
 fi
 
+# The Blender add-on, headless (tests/blender/run.sh); 3: skipped (no blender, or no Python
+# module), the script says why.
+status=0
+bash tests/blender/run.sh || status=$?
+if [ "$status" = 3 ]; then
+  echo "test: Blender add-on stage SKIPPED (see above)"
+elif [ "$status" != 0 ]; then
+  exit "$status"
+fi
+stage "Blender add-on"
+
 # The cluster scripts as users submit them: through a local Slurm cluster (installed and started
 # by tools/slurm_local.sh), and the Kubernetes manifest (kubectl, offline). 3: skipped, the
 # script says why.

@@ -1,0 +1,247 @@
+"""The two operators: massage an object's shape keys, massage its Mesh Cache modifier's file."""
+import os
+
+import bpy
+import numpy as np
+
+from . import loader, massaging, pointcache, properties, schema
+
+MASSAGED = ".massaged"
+
+
+def _positions(collection, n):
+    co = np.empty(n * 3, dtype=np.float32)
+    collection.foreach_get("co", co)
+    return co.reshape(n, 3).astype(np.float64)
+
+
+def triangles(mesh):
+    """The mesh's faces as triangles (Blender's own triangulation of polygons), m x 3 int32."""
+    mesh.calc_loop_triangles()
+    tris = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+    mesh.loop_triangles.foreach_get("vertices", tris)
+    return tris.reshape(-1, 3)
+
+
+def group_weights(obj, name):
+    """Per-vertex weights of vertex group `name` (0 where a vertex is not in it)."""
+    group = obj.vertex_groups.get(name)
+    if group is None:
+        raise ValueError(f"{obj.name}: no vertex group named {name!r}")
+    w = np.zeros(len(obj.data.vertices), dtype=np.float64)
+    for v in obj.data.vertices:
+        for g in v.groups:
+            if g.group == group.index:
+                w[v.index] = g.weight
+    return w
+
+
+class _Massage:
+    """What both operators share: the module, the object's options, the Massager."""
+
+    keep_original: bpy.props.BoolProperty(
+        name="Keep Original",
+        description="Write the corrected positions to new shape keys named <key>.massaged "
+                    "instead of replacing each key's positions")
+    vertex_group: bpy.props.StringProperty(
+        name="Weights", description="Vertex group used as per-vertex weights (needs a module "
+                                    "with the vertex weights feature); empty: none")
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and obj.type == "MESH" and context.mode == "OBJECT"
+
+    def massager(self, context, obj, template, tris):
+        """(module, Massager), or None after reporting why."""
+        m = properties.module(context)
+        if m is None:
+            self.report({"ERROR"}, loader.status())
+            return None
+        if not properties.has_schema():
+            properties.register_options()
+        kwargs = schema.massage_kwargs(m, obj.seqmassage)
+        weights = None
+        if self.vertex_group:
+            if not schema.accepts(m, "vertex_weights"):
+                self.report({"ERROR"}, "vertex group weights need a seqmassage module with the "
+                                       "vertex weights feature (massage.vertex_weights)")
+                return None
+            try:
+                weights = group_weights(obj, self.vertex_group)
+            except ValueError as e:
+                self.report({"ERROR"}, str(e))
+                return None
+        try:
+            return m, massaging.make_massager(m, template, tris, kwargs, weights)
+        except (ValueError, RuntimeError) as e:
+            self.report({"ERROR"}, f"{obj.name}: {e}")
+            return None
+
+
+class SEQMASSAGE_OT_massage_shape_keys(_Massage, bpy.types.Operator):
+    """Correct the texture swimming of the shape keys: every key's triangles take the basis
+    key's shapes while the key keeps its surface"""
+
+    bl_idname = "seqmassage.massage_shape_keys"
+    bl_label = "Massage Shape Keys"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        obj = context.active_object
+        mesh = obj.data
+        keys = mesh.shape_keys
+        if keys is None or len(keys.key_blocks) < 2:
+            self.report({"ERROR"}, f"{obj.name}: needs a basis shape key and at least one other")
+            return {"CANCELLED"}
+        basis = keys.reference_key
+        frames = [kb for kb in keys.key_blocks
+                  if kb != basis and not kb.name.endswith(MASSAGED)]
+        if not frames:
+            self.report({"ERROR"}, f"{obj.name}: no shape keys besides the basis "
+                                   f"(keys named *{MASSAGED} are results, not frames)")
+            return {"CANCELLED"}
+        n = len(mesh.vertices)
+        tris = triangles(mesh)
+        template = _positions(basis.data, n)
+        got = self.massager(context, obj, template, tris)
+        if got is None:
+            return {"CANCELLED"}
+        m, massager = got
+        inputs = [_positions(kb.data, n) for kb in frames]
+        wm = context.window_manager
+        wm.progress_begin(0, len(frames))
+        results = []
+        for k, r in enumerate(massaging.iter_frames(m, massager, template, tris, inputs)):
+            results.append(r)
+            wm.progress_update(k + 1)
+        wm.progress_end()
+        for kb, r in zip(frames, results):
+            self.store(obj, kb, r)
+            self.report({"INFO"} if r.ok else {"WARNING"}, massaging.describe(kb.name, r))
+        self.report({"INFO"}, summary(f"{obj.name}: {len(frames)} shape keys", results))
+        return {"FINISHED"}
+
+    def store(self, obj, kb, r):
+        if not r.ok and self.keep_original:
+            return
+        target = kb
+        if self.keep_original:
+            name = kb.name + MASSAGED
+            target = obj.data.shape_keys.key_blocks.get(name)
+            if target is None:
+                target = obj.shape_key_add(name=name, from_mix=False)
+                target.relative_key = kb.relative_key
+                target.slider_min, target.slider_max = kb.slider_min, kb.slider_max
+        if r.ok:
+            target.data.foreach_set("co", r.vertices.astype(np.float32).ravel())
+        obj.data.update()
+
+
+def summary(what, results):
+    ok = [r for r in results if r.ok]
+    failed = len(results) - len(ok)
+    if not ok:
+        return f"{what}: every frame failed"
+    before = np.mean([r.shear_before for r in ok])
+    after = np.mean([r.shear_after for r in ok])
+    text = f"{what} massaged: mean shear {before:.4g} -> {after:.4g}"
+    return text + (f"; {failed} failed, left as they were" if failed else "")
+
+
+def mesh_cache_modifier(obj):
+    active = obj.modifiers.active
+    if active is not None and active.type == "MESH_CACHE":
+        return active
+    return next((md for md in obj.modifiers if md.type == "MESH_CACHE"), None)
+
+
+def massaged_path(path):
+    stem, ext = os.path.splitext(path)
+    return stem + MASSAGED + ext
+
+
+class _Written:
+    """The corrected frames as pointcache.write takes them, collecting the results' figures."""
+
+    def __init__(self, frames, count, wm):
+        self.frames, self.count, self.wm = frames, count, wm
+        self.results = []
+
+    def __len__(self):
+        return self.count
+
+    def __iter__(self):
+        for r in self.frames:
+            self.results.append(r)
+            self.wm.progress_update(len(self.results))
+            yield r.vertices
+
+
+class SEQMASSAGE_OT_massage_mesh_cache(_Massage, bpy.types.Operator):
+    """Correct the texture swimming of the Mesh Cache modifier's PC2 or MDD file against the
+    object's mesh: writes <name>.massaged.pc2 (or .mdd) beside it and points the modifier at it"""
+
+    bl_idname = "seqmassage.massage_mesh_cache"
+    bl_label = "Massage Mesh Cache"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        obj = context.active_object
+        md = mesh_cache_modifier(obj)
+        if md is None:
+            self.report({"ERROR"}, f"{obj.name}: no Mesh Cache modifier")
+            return {"CANCELLED"}
+        path = bpy.path.abspath(md.filepath)
+        try:
+            cache = pointcache.read(path, md.cache_format)
+        except pointcache.CacheError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        n = len(obj.data.vertices)
+        if cache.num_points != n:
+            self.report({"ERROR"}, f"{path}: {cache.num_points} points, but the mesh of "
+                                   f"{obj.name} has {n} vertices")
+            return {"CANCELLED"}
+        if md.deform_mode != "OVERWRITE":
+            self.report({"WARNING"}, f"{md.name}: deform mode {md.deform_mode}; the cache's "
+                                     f"positions are massaged as absolute positions")
+        tris = triangles(obj.data)
+        template = _positions(obj.data.vertices, n)
+        got = self.massager(context, obj, template, tris)
+        if got is None:
+            return {"CANCELLED"}
+        m, massager = got
+        out = massaged_path(path)
+        wm = context.window_manager
+        wm.progress_begin(0, cache.num_frames)
+        frames = _Written(massaging.iter_frames(m, massager, template, tris, cache.frames),
+                          cache.num_frames, wm)
+        try:
+            pointcache.write(out, cache.format, frames, cache.start, cache.rate, cache.times)
+        except (OSError, pointcache.CacheError) as e:
+            self.report({"ERROR"}, f"{out}: {e}")
+            return {"CANCELLED"}
+        finally:
+            wm.progress_end()
+        relative = md.filepath.startswith("//")
+        md.filepath = bpy.path.relpath(out) if relative else out
+        failed = [k for k, r in enumerate(frames.results) if not r.ok]
+        for k in failed[:10]:
+            self.report({"WARNING"}, massaging.describe(f"frame {k}", frames.results[k]))
+        self.report({"INFO"}, summary(f"{os.path.basename(path)}: {cache.num_frames} frames",
+                                      frames.results) + f"; written to {out}")
+        return {"FINISHED"}
+
+
+classes = (SEQMASSAGE_OT_massage_shape_keys, SEQMASSAGE_OT_massage_mesh_cache)
+
+
+def register():
+    for c in classes:
+        bpy.utils.register_class(c)
+
+
+def unregister():
+    for c in reversed(classes):
+        bpy.utils.unregister_class(c)
