@@ -86,21 +86,25 @@ void check_output_names(const SequencePlan& plan) {
   const auto label = [&](int i) {
     return frame_label(i, plan.source->name(i), std::nullopt);
   };
-  std::map<std::string, int> writer;  // folded output name -> frame
+  // folded name -> (frame, exact name). Two frames' records with one folded name collide; an
+  // output file collides when the folded names agree and the exact ones differ (an output's
+  // file shared by every frame, such as the checker's material, has one exact name).
+  std::map<std::string, std::pair<int, std::string>> writer;
+  const auto claim = [&](const fs::path& file, int index, bool shared_ok) {
+    const std::string exact = file.generic_string();
+    const auto [at, fresh] = writer.emplace(folded(file), std::make_pair(index, exact));
+    if (fresh || at->second.first == index || (shared_ok && at->second.second == exact)) return;
+    throw InputError("frames " + label(at->second.first) + " and " + label(index) +
+                     " would both write " + exact +
+                     " (their output names differ only in letter case or extension): one "
+                     "would overwrite the other; rename one of them");
+  };
   for (int index : plan.selected) {
     const std::string name = plan.source->name(index);
-    std::vector<fs::path> files = {fs::path("records") / fs::path(name).replace_extension(".json")};
+    claim(fs::path("records") / fs::path(name).replace_extension(".json"), index, false);
     for (const auto& output : plan.outputs)
       for (const fs::path& file : output->files({index}))
-        files.push_back(file.lexically_relative(plan.config.output.dir));
-    for (const fs::path& file : files) {
-      const auto [at, fresh] = writer.emplace(folded(file), index);
-      if (fresh || at->second == index) continue;
-      throw InputError("frames " + label(at->second) + " and " + label(index) +
-                       " would both write " + file.generic_string() +
-                       " (their output names differ only in letter case or extension): one "
-                       "would overwrite the other; rename one of them");
-    }
+        claim(file.lexically_relative(plan.config.output.dir), index, true);
   }
 }
 

@@ -211,7 +211,8 @@ TEST_CASE("wrong types and out-of-range values name the key and the value") {
   CHECK(config_error(with("output", R"({"dir": ""})")) ==
         "output.dir: expected a path (a non-empty string), got \"\"");
   CHECK(config_error(with("output", R"({"dir": "o", "format": "glft"})")) ==
-        "output.format: expected \"obj\" or \"gltf\", got \"glft\" (did you mean \"gltf\"?)");
+        "output.format: expected \"obj\", \"gltf\", \"pc2\", or \"mdd\", got \"glft\" (did you "
+        "mean \"gltf\"?)");
   CHECK(config_error(with("job", R"("remesh")")) == "job: expected \"sequence\", got \"remesh\"");
   CHECK(config_error("[1, 2]") == "config: expected an object, got an array");
 }
@@ -235,11 +236,12 @@ TEST_CASE("missing and conflicting keys") {
         "output.dir: missing (the folder the results are written to)");
   CHECK(config_error(with("input", R"({})")) ==
         "input: missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated "
-        "sequence) or \"gltf\" (a glTF animation)");
+        "sequence), \"gltf\" (a glTF animation), or \"pc2\" or \"mdd\" (a point cache, with "
+        "its \"mesh\")");
   CHECK(config_error(with("input", R"({"frames": "f", "synthetic": {}})")) ==
-        "input: give only one of \"frames\", \"synthetic\" and \"gltf\"");
+        "input: give only one of \"frames\", \"synthetic\", \"gltf\", \"pc2\" and \"mdd\"");
   CHECK(config_error(with("input", R"({"frames": "f", "gltf": "take.glb"})")) ==
-        "input: give only one of \"frames\", \"synthetic\" and \"gltf\"");
+        "input: give only one of \"frames\", \"synthetic\", \"gltf\", \"pc2\" and \"mdd\"");
   CHECK(config_error(with("template", R"({"frame": 1, "mesh": "rest.obj"})")) ==
         "template: give \"frame\" or \"mesh\", not both");
   CHECK(config_error(with("template", R"({"mesh": "rest.obj", "optimize": true})"))
@@ -252,7 +254,7 @@ TEST_CASE("missing and conflicting keys") {
   CHECK(config_error(with("input", R"({"synthetic": {"drift": 3}})")) ==
         "input.synthetic.drift: expected a number in [0, 2], got 3");
   CHECK(config_error(with("input", R"({"synthetic": {"shape": "sphere"}})")) ==
-        "input.synthetic.shape: expected \"bending_tube\", got \"sphere\"");
+        "input.synthetic.shape: expected \"bending_tube\" or \"rolled_sheet\", got \"sphere\"");
 }
 
 TEST_CASE("glTF input keys: file, mesh and animation by name or index, fps; GLB output") {
@@ -310,7 +312,8 @@ TEST_CASE("glTF input keys: file, mesh and animation by name or index, fps; GLB 
   CHECK(config_error(with("input", R"({"frames": "f", "fps": 30})")) ==
         "input.fps: only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
   CHECK(config_error(with("input", R"({"frames": "f", "mesh": 0})")) ==
-        "input.mesh: only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)");
+        "input.mesh: only applies to a glTF input (\"gltf\": a .gltf or .glb animation file); or "
+        "the mesh of a \"pc2\" or \"mdd\" cache");
   CHECK(config_error(with("output", R"({"dir": "o", "format": "gltf"})")) ==
         "output.format: \"gltf\" needs a glTF input (input.gltf), whose mesh, materials and "
         "textures the output keeps; use \"obj\" for OBJ frames");

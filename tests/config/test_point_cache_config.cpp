@@ -83,7 +83,7 @@ TEST_CASE("point cache keys are checked across keys, by JSON path") {
             .rfind("output.on_failure: \"skip\" cannot go with output.format \"pc2\"", 0) == 0);
   CHECK(error_of(R"("input": {"frames": "f"}, "output": {"dir": "o", "format": "mdd",)"
                  R"( "on_failure": "skip"})") == "");
-  CHECK(error_of(R"("input": {"frames": "f"}, "output": {"dir": "o", "format": "pc3"}})") ==
+  CHECK(error_of(R"("input": {"frames": "f"}, "output": {"dir": "o", "format": "pc3"})") ==
         "output.format: expected \"obj\", \"gltf\", \"pc2\", or \"mdd\", got \"pc3\" (did you "
         "mean \"pc2\"?)");
   CHECK(error_of(R"("input": {"frames": "f"}, "output": {"dir": "o", "format": "mdd",)"

@@ -227,7 +227,7 @@ TEST_CASE("glTF: a 1.6 KB file claiming 4e8 or 2^31-1 elements is refused cheapl
         message = e.what();
       }
     });
-    INFO(count << ": " << w.bytes << " bytes allocated");
+    INFO(claimed << ": " << w.bytes << " bytes allocated");
     CHECK_THAT(message, Catch::Contains("accessors[0]: data needs bytes 0.."));
     CHECK(w.bytes < 1'000'000);
   }

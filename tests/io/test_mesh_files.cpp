@@ -70,13 +70,17 @@ TEST_CASE("list_frames returns the matching files in natural order", "[frames]")
                            ".hidden_3.obj", "frame_3.obj.seqmassage-tmp", "frame_0.ply"}) {
     std::ofstream(dir / name) << "x";
   }
-  std::filesystem::create_directories(dir / "frame_4.obj");  // a folder, not a frame
   const auto frames = list_frames(dir.path());
   REQUIRE(frames.size() == 3);
   CHECK(frames[0] == dir / "frame_1.OBJ");
   CHECK(frames[1] == dir / "frame_2.obj");
   CHECK(frames[2] == dir / "frame_10.obj");
   CHECK(list_frames(dir.path(), "PLY") == std::vector<std::filesystem::path>{dir / "frame_0.ply"});
+
+  // A folder named like a frame is refused, not skipped (it would renumber the frames after it).
+  std::filesystem::create_directories(dir / "frame_4.obj");
+  CHECK_THROWS_WITH(list_frames(dir.path()), Catch::Contains("'frame_4.obj' is a folder"));
+  std::filesystem::remove(dir / "frame_4.obj");
 
   const auto missing = dir / "missing";
   CHECK(error_of<IoError>([&] { list_frames(missing); }) ==

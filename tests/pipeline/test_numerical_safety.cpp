@@ -27,8 +27,8 @@ namespace {
 // library's readers refuse NaN, so this is the honest way in.
 class NanSource : public FrameSource {
  public:
-  NanSource(std::shared_ptr<const FrameSource> inner, int bad)
-      : inner_(std::move(inner)), bad_(bad) {}
+  NanSource(std::shared_ptr<const FrameSource> inner, int bad, int huge = -1)
+      : inner_(std::move(inner)), bad_(bad), huge_(huge) {}
   int size() const override { return inner_->size(); }
   std::string name(int i) const override { return inner_->name(i); }
   std::string describe() const override { return inner_->describe(); }
@@ -40,12 +40,17 @@ class NanSource : public FrameSource {
   SourceFrame decode(int i, std::string bytes) const override {
     SourceFrame f = inner_->decode(i, std::move(bytes));
     if (i == bad_) f.mesh.V(7, 1) = std::nan("");
+    if (i == huge_) {  // the readers refuse coordinates beyond 1e18: this is the way in
+      f.mesh.V(0, 0) = 1.7e308;
+      f.mesh.V(1, 1) = -1.7e308;
+    }
     return f;
   }
 
  private:
   std::shared_ptr<const FrameSource> inner_;
   int bad_;
+  int huge_;
 };
 
 // Frames 2, 3 and 4 of a 6-frame tube made to fail, each in its own way.
@@ -56,16 +61,12 @@ SequencePlan failing_plan(const SequenceJobOptions& c) {
                           [](int v, double& x, double&, double&) {
                             if (v == 40) x += 5.0;
                           });
-  // Frame 3: finite coordinates at the end of the double range: the system overflows and the
-  // sparse LU fails.
-  test::edit_obj_vertices(c.input.frames / "frame_0003.obj",
-                          [](int v, double& x, double& y, double&) {
-                            if (v == 0) x = 1.7e308;
-                            if (v == 1) y = -1.7e308;
-                          });
-  SequencePlan plan = plan_sequence_job(c);
-  // Frame 4: a NaN from the source.
-  plan.source = std::make_shared<NanSource>(plan.source, 4);
+  SequenceJobOptions no_repair = c;  // the fold must fail its frame, not be repaired
+  no_repair.checks.repair_folds = false;
+  SequencePlan plan = plan_sequence_job(no_repair);
+  // Frame 4: a NaN from the source; frame 3: finite coordinates at the end of the double range,
+  // which overflow the system: the sparse LU fails.
+  plan.source = std::make_shared<NanSource>(plan.source, 4, 3);
   plan.outputs = make_frame_outputs({plan.config, plan.source, {}});
   return plan;
 }
@@ -157,8 +158,9 @@ TEST_CASE("folds below the limit are counted, reported, and do not fail the fram
   CHECK_THAT(nlohmann::json::parse(read_file(dir / "out/report.json"))["warnings"].dump(),
              Contains("frame 2 (frame_0002.obj): " + std::to_string(r.frames[2].folded_triangles) +
                       " triangles folded over"));
-  // An absolute limit below the count fails it.
+  // An absolute limit below the count fails it (without the fold repair, which would mend it).
   c.checks.max_folded_triangles = 1;
+  c.checks.repair_folds = false;
   const SequenceResult strict = run_sequence_job(plan_sequence_job(c));
   CHECK(strict.failed == 1);
   CHECK_THAT(strict.frames[2].failure, Contains("more than checks.max_folded_triangles = 1"));

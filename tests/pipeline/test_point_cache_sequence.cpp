@@ -124,7 +124,7 @@ TEST_CASE("a PC2 input gives the OBJ frames the OBJ folder gives, and its report
   p.output.dir = dir / "pc2_out";
   const SequencePlan plan = plan_sequence_job(p);
   CHECK_THAT(describe_plan(plan), Contains("input: PC2 cache ") &&
-                                      Contains("4 frames of 120 points (start frame 0, sample "
+                                      Contains("4 frames of 132 points (start frame 0, sample "
                                                "rate 1), on the triangles of "));
   run_sequence_job(plan);
   // The same positions, and rest.obj's statements (texture coordinates, faces) in every frame.
@@ -141,7 +141,7 @@ TEST_CASE("a PC2 input gives the OBJ frames the OBJ folder gives, and its report
   CHECK(read_file(b[0]) == read_file(dir / "rest.obj"));  // the template frame, unchanged
   const auto report = nlohmann::json::parse(read_file(dir / "pc2_out/report.json"));
   CHECK(report["input"]["kind"] == "pc2");
-  CHECK(report["input"]["vertices"] == 120);
+  CHECK(report["input"]["vertices"] == 132);
 }
 
 TEST_CASE("a PC2 job in shards, merged, writes the bytes of one run; so does a resumed one") {
@@ -193,6 +193,7 @@ TEST_CASE("a PC2 job in shards, merged, writes the bytes of one run; so does a r
 TEST_CASE("an MDD output keeps an MDD input's frame times; a failed frame is its input") {
   test::TempDir dir("mdd_times");
   SequenceJobOptions c = float_tube_job(dir.path(), 4);
+  const fs::path frames_dir = c.input.frames;
   use_cache(c, cache_of_folder(c.input.frames, dir.path(), PointCacheFormat::Mdd));
   c.output.format = OutputFormat::Mdd;
   c.input.range = {1, std::nullopt, 1};
@@ -207,7 +208,7 @@ TEST_CASE("an MDD output keeps an MDD input's frame times; a failed frame is its
   CHECK(h.times == std::vector<float>{1.0f / 24, 2.0f / 24, 3.0f / 24});
   const std::vector<Positions> frames =
       read_cache(dir / "out/sequence.mdd", PointCacheFormat::Mdd);
-  const std::vector<fs::path> inputs = list_frames(c.input.frames);
+  const std::vector<fs::path> inputs = list_frames(frames_dir);
   for (int f = 0; f < 3; ++f) CHECK(frames[size_t(f)] == read_obj(inputs[size_t(f) + 1]).mesh.V);
 
   // An OBJ folder has no times: frame numbers / output.point_cache.fps.
@@ -230,13 +231,13 @@ TEST_CASE("a point cache input is checked: vertex counts, non-finite positions")
   SequenceJobOptions wrong = c;
   wrong.input.pc2->mesh = dir / "small.obj";
   CHECK(error_of<InputError>([&] { plan_sequence_job(wrong); }) ==
-        "'" + cache.file.string() + "' has 120 points per frame, but its mesh '" +
+        "'" + cache.file.string() + "' has 132 points per frame, but its mesh '" +
             (dir / "small.obj").string() + "' has 3 vertices; the cache must be of that mesh");
 
   // A NaN in frame 2, vertex 7: refused when the job is planned, before anything is written.
   std::string bytes = read_file(cache.file);
   const float nan = std::nanf("");
-  std::memcpy(&bytes[32 + 2 * 120 * 12 + 7 * 12], &nan, 4);
+  std::memcpy(&bytes[32 + 2 * 132 * 12 + 7 * 12], &nan, 4);
   write_file_atomic(cache.file, bytes);
   CHECK_THAT(error_of<InputError>([&] { plan_sequence_job(c); }),
              Contains("take.pc2': frame 2, vertex 7: non-finite position (nan, "));
