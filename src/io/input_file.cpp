@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void fail(const std::string& what, const fs::path& path, int err) {
+[[noreturn]] void fail_input(const std::string& what, const fs::path& path, int err) {
   throw IoError(what + " '" + path.string() + "': " + std::strerror(err));
 }
 
@@ -42,16 +42,16 @@ std::string describe_file_kind(unsigned st_mode) {
 InputFile::InputFile(const fs::path& path) : path_(path) {
   // O_NONBLOCK: opening a FIFO without a writer, or a device, returns at once instead of hanging.
   fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd_ < 0) fail("cannot open", path, errno);
+  if (fd_ < 0) fail_input("cannot open", path, errno);
   struct stat st {};
   if (::fstat(fd_, &st) != 0) {
     const int err = errno;
     ::close(fd_);
-    fail("cannot read", path, err);
+    fail_input("cannot read", path, err);
   }
   if (S_ISDIR(st.st_mode)) {  // as reading it would say
     ::close(fd_);
-    fail("cannot read", path, EISDIR);
+    fail_input("cannot read", path, EISDIR);
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd_);
@@ -72,7 +72,7 @@ size_t InputFile::read(char* buffer, size_t n) {
   for (;;) {
     const ssize_t r = ::read(fd_, buffer, n);
     if (r >= 0) return size_t(r);
-    if (errno != EINTR) fail("cannot read", path_, errno);
+    if (errno != EINTR) fail_input("cannot read", path_, errno);
   }
 }
 

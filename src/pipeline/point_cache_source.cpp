@@ -27,7 +27,7 @@ ObjFile mesh_layout(const fs::path& file, const std::string& bytes) {
   return parse_obj(format_obj(read_mesh(file)), file.string());
 }
 
-std::string short_number(double x) {
+std::string cache_number(double x) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", x);
   return buffer;
@@ -60,11 +60,11 @@ class PointCacheSource : public FrameSource {
                        input_.file.string() + ", " + std::to_string(size()) + " frames of " +
                        std::to_string(header_.points) + " points";
     if (input_.format == PointCacheFormat::Pc2)
-      text += " (start frame " + short_number(header_.start) + ", sample rate " +
-              short_number(header_.sample_rate) + ")";
+      text += " (start frame " + cache_number(header_.start) + ", sample rate " +
+              cache_number(header_.sample_rate) + ")";
     else
-      text += " (" + short_number(header_.times.front()) + " to " +
-              short_number(header_.times.back()) + " s)";
+      text += " (" + cache_number(header_.times.front()) + " to " +
+              cache_number(header_.times.back()) + " s)";
     return text + ", on the triangles of " + input_.mesh.string() + " (" +
            std::to_string(layout_->mesh.num_triangles()) + ")";
   }

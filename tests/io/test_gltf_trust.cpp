@@ -27,7 +27,7 @@ using nlohmann::json;
 using test::error_of;
 using test::TempDir;
 
-GltfSequence load(const fs::path& file) {
+GltfSequence load_untrusted(const fs::path& file) {
   return load_gltf_sequence({file, "", "", std::nullopt});
 }
 
@@ -69,7 +69,7 @@ TEST_CASE("glTF: a buffer uri escaping the model's folder is refused, naming ele
   doc["buffers"][0]["uri"] = "./sub/../t.bin";
   fs::create_directories(dir / "model/sub");
   write_file_atomic(file, doc.dump());
-  CHECK(load(file).num_frames() > 1);
+  CHECK(load_untrusted(file).num_frames() > 1);
 }
 
 TEST_CASE("glTF: an absolute buffer uri to an existing file says why it is refused") {
@@ -99,7 +99,7 @@ TEST_CASE("glTF: a symlink out of the model's folder and a FIFO are refused") {
   // A symlink that stays inside is read.
   fs::remove(dir / "model/link.bin");
   fs::create_symlink("t.bin", dir / "model/link.bin");
-  CHECK(load(file).num_frames() > 1);
+  CHECK(load_untrusted(file).num_frames() > 1);
   // A FIFO must not block the load: it is refused by its kind.
   fs::remove(dir / "model/link.bin");
   REQUIRE(::mkfifo((dir / "model/link.bin").c_str(), 0600) == 0);
@@ -122,7 +122,7 @@ TEST_CASE("glTF: percent-encoded names are decoded once, '+' stays a plus, and a
     const GltfFile loaded = load_gltf_file(file);
     REQUIRE(loaded.resources.size() == 1);
     CHECK(loaded.resources[0] == dir / "model" / name);
-    CHECK(load(file).num_frames() > 1);
+    CHECK(load_untrusted(file).num_frames() > 1);
     fs::remove(dir / "model" / name);
   }
   const fs::path file = model_with_uri(dir, "bad%2.bin");
@@ -155,7 +155,7 @@ TEST_CASE("glTF: JSON nested 20,000 levels deep is refused before any parser rec
   text.replace(text.find("\"extras\":"), 9 + 40000,
                "\"extras\":\"" + std::string(1000, '[') + "\\\"\"");
   write_file_atomic(file, text);
-  CHECK(load(file).num_frames() > 1);
+  CHECK(load_untrusted(file).num_frames() > 1);
 }
 
 TEST_CASE("glTF: an accessor count beyond its buffer view is refused before allocating by it") {
@@ -163,7 +163,7 @@ TEST_CASE("glTF: an accessor count beyond its buffer view is refused before allo
   for (const uint64_t count : {uint64_t(400000000), uint64_t(2147483647)}) {
     const fs::path file =
         model_with(dir, [&](json& doc) { doc["accessors"][0]["count"] = count; });
-    const std::string message = error_of<InputError>([&] { load(file); });
+    const std::string message = error_of<InputError>([&] { load_untrusted(file); });
     CHECK_THAT(message, Contains("accessors[0]: data needs bytes 0.."));
     CHECK_THAT(message, Contains("of bufferViews[0], which has "));
   }
@@ -175,7 +175,7 @@ TEST_CASE("glTF: a byteStride smaller than the element is refused") {
     const size_t view = doc["accessors"][0]["bufferView"].get<size_t>();
     doc["bufferViews"][view]["byteStride"] = 4;
   });
-  CHECK_THAT(error_of<InputError>([&] { load(file); }),
+  CHECK_THAT(error_of<InputError>([&] { load_untrusted(file); }),
              Contains("accessors[0]: bufferViews[0].byteStride 4 is smaller than its element (12 "
                       "bytes): elements would overlap"));
 }
@@ -190,7 +190,7 @@ TEST_CASE("glTF: a finite POSITION too large for the geometry names the element 
   std::memcpy(b.m.buffers[0].data.data() + v.byteOffset + 4, &huge, sizeof huge);  // vertex 0, y
   fs::create_directories(dir / "model");
   b.save(dir / "model/t.glb", true);
-  CHECK_THAT(error_of<InputError>([&] { load(dir / "model/t.glb"); }),
+  CHECK_THAT(error_of<InputError>([&] { load_untrusted(dir / "model/t.glb"); }),
              Contains("accessors[" + std::to_string(positions) +
                       "]: element 0: POSITION value 1e+30 is too large (more than 1e18 in "
                       "magnitude"));
