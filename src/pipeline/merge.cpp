@@ -1,7 +1,6 @@
 #include "pipeline/output_lock.hpp"
 #include "pipeline/merge.hpp"
 
-#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
@@ -190,8 +189,8 @@ void verify_same_job(const Shards& s) {
 // Every shard there, complete, with its block of the selection; every frame once. Returns the
 // shard file of every frame; adds what is wrong to `problems` (and names from the input, when
 // a shard is missing and the input can be listed).
-std::map<int, std::string> verify_blocks(Shards& s, const std::vector<int>& selected,
-                                         std::vector<std::string>& problems) {
+void verify_blocks(Shards& s, const std::vector<int>& selected,
+                   std::vector<std::string>& problems) {
   std::map<int, const ShardReport*> by_index;
   for (const ShardReport& r : s.reports) by_index[r.shard.index] = &r;
   std::map<int, std::string> owner;  // frame -> shard file
@@ -233,7 +232,6 @@ std::map<int, std::string> verify_blocks(Shards& s, const std::vector<int>& sele
       problems.push_back(r.file + ": " + shard_label(shard) +
                          " was interrupted before its last frame; run it again: " + rerun);
   }
-  return owner;
 }
 
 // Why frame `f`'s record cannot be merged, or "" (then `record` holds it).
@@ -253,7 +251,7 @@ std::string record_problem(const Shards& s, int f, const std::string& name,
 // Every selected frame's record, of this job, with its outputs: their rows into `result`, their
 // record rows into `rows`; what is wrong into `problems`.
 void verify_records(const Shards& s, const std::vector<int>& selected,
-                    std::map<int, std::string>& owner, MergeResult& result, std::string& rows,
+                    MergeResult& result, std::string& rows,
                     std::vector<std::string>& problems) {
   std::vector<int> bad_frames;
   std::string first_bad;
@@ -271,10 +269,11 @@ void verify_records(const Shards& s, const std::vector<int>& selected,
     rows += r->iterations_csv;
   }
   if (bad_frames.empty()) return;
-  std::set<int> redo;  // every selected frame is in one shard's block
+  const std::set<int> bad(bad_frames.begin(), bad_frames.end());
+  std::set<int> redo;  // the shards whose blocks hold a bad frame
   for (int i = 0; i < s.count; ++i)
     for (int f : shard_frames(selected, {i, s.count}))
-      if (std::find(bad_frames.begin(), bad_frames.end(), f) != bad_frames.end()) redo.insert(i);
+      if (bad.count(f)) redo.insert(i);
   std::string rerun;
   for (int i : redo)
     rerun += (rerun.empty() ? "" : "; ") + std::string("seqmassage --shard ") +
@@ -345,11 +344,11 @@ MergeResult merge_shards(const fs::path& output_dir) {
   const std::vector<int> selected =
       select_frames(shards.config.input.range, shards.header.frames_listed);
   std::vector<std::string> problems;
-  std::map<int, std::string> owner = verify_blocks(shards, selected, problems);
+  verify_blocks(shards, selected, problems);
   MergeResult result;
   result.shards = shards.count;
   std::string rows;  // the records' iterations.csv rows, in frame order
-  verify_records(shards, selected, owner, result, rows, problems);
+  verify_records(shards, selected, result, rows, problems);
   if (!problems.empty()) {
     std::string text = "'" + shards.dir.string() + "': cannot merge " +
                        std::to_string(shards.count) + " shards:";
