@@ -72,6 +72,7 @@ struct MassageOptions {
   DistanceTerm distance_term = DistanceTerm::Point;  ///< "distance_term": "point" | "plane"
   double tangential_stiffness = 0.2;  ///< "tangential_stiffness": ε of the plane term, (0, 1]
   double tangential_adapt = 5.0;      ///< "tangential_adapt": ε's rise with the area change
+  int tangential_smoothing = 12;  ///< "tangential_smoothing": 1-ring passes over the area change
   /// "vertex_weights": a file of per-vertex weights (a text file of numbers, or "file.ply#name",
   /// a scalar vertex property of a PLY file), read by the jobs into `vertex_weights`; the
   /// Massager itself reads only the vector.
@@ -179,6 +180,10 @@ inline Fields<MassageOptions> extensions() {
                                   "|log area ratio| between the template and the start around "
                                   "vertex i, smoothed over a few rings), stiff where the surface "
                                   "stretches, soft where it bends isometrically; 0: ε everywhere"),
+      field<&O::tangential_smoothing>("tangential_smoothing", closed(0, 1000),
+                                      "passes of 1-ring averaging of the log area ratio before "
+                                      "`tangential_adapt` applies: more average out a wider "
+                                      "tangential drift, fewer keep a stretch local"),
       field<&O::vertex_weights_file>(
           "vertex_weights", any_value(),
           "per-vertex weights in [0, 1], one per vertex of M (for glTF input: of the welded "
