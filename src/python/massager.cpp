@@ -102,7 +102,8 @@ class PyMassager {
   PyMassager(const DoubleArray& template_vertices, const py::handle& triangles,
              const py::kwargs& massage) {
     MassageOptions options;
-    py::dict keys(massage);  // a copy: vertex_weights as numbers is taken out
+    // A copy, from which vertex_weights as numbers is taken out.
+    py::dict keys = massage.attr("copy")().cast<py::dict>();
     py::object numbers = py::none();
     if (keys.contains("vertex_weights") && weights_as_numbers(keys["vertex_weights"]))
       numbers = keys.attr("pop")("vertex_weights");
