@@ -28,6 +28,7 @@ def scene():
     md.cache_format = "PC2"
     md.filepath = path
     obj.vertex_groups.new(name="lips")
+    obj.seqmassage.vertex_group = "lips"
     obj.seqmassage.iterations = 15
 
 

@@ -12,6 +12,8 @@
 # Every output file must be byte-identical; report.json (and report.shard-*.json) may differ only
 # in "versions". Builds go to build-compare/ (kept, so a rerun is incremental). Exit status: 0
 # identical, 1 differences, 2 usage or build error.
+#   BASE_BIN=... NEW_BIN=... bash tools/compare_outputs.sh BASE   use these seqmassage builds
+#                                            (of BASE and of the working tree) instead of building
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -39,12 +41,20 @@ build() {  # source dir, build dir
   cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build "$2" -j"$jobs" --target seqmassage >/dev/null
 }
-echo "building base ${base_sha:0:12} ($(git log -1 --format=%s "$base_sha" | cut -c1-60))"
-build "$base_src" "$builds/base-${base_sha:0:12}" || { echo "compare_outputs: base build failed" >&2; exit 2; }
-echo "building the working tree"
-build "$root" "$builds/new" || { echo "compare_outputs: working tree build failed" >&2; exit 2; }
-base_bin="$builds/base-${base_sha:0:12}/src/cli/seqmassage"
-new_bin="$builds/new/src/cli/seqmassage"
+base_bin="${BASE_BIN:-$builds/base-${base_sha:0:12}/src/cli/seqmassage}"
+new_bin="${NEW_BIN:-$builds/new/src/cli/seqmassage}"
+if [[ -z "${BASE_BIN:-}" ]]; then
+  echo "building base ${base_sha:0:12} ($(git log -1 --format=%s "$base_sha" | cut -c1-60))"
+  build "$base_src" "$builds/base-${base_sha:0:12}" ||
+    { echo "compare_outputs: base build failed" >&2; exit 2; }
+fi
+if [[ -z "${NEW_BIN:-}" ]]; then
+  echo "building the working tree"
+  build "$root" "$builds/new" || { echo "compare_outputs: working tree build failed" >&2; exit 2; }
+fi
+for b in "$base_bin" "$new_bin"; do
+  [[ -x "$b" ]] || { echo "compare_outputs: '$b' is not an executable" >&2; exit 2; }
+done
 
 # Both builds run the same config files at the same absolute paths, so that the paths written
 # into reports and records agree: <work>/w/configs/*.json, data at <work>/shared/data, outputs

@@ -24,15 +24,18 @@ def triangles(mesh):
 
 
 def group_weights(obj, name):
-    """Per-vertex weights of vertex group `name` (0 where a vertex is not in it)."""
+    """Per-vertex weights of vertex group `name`, in the mesh's vertex order (that of its shape
+    keys and of a point cache): the group's weight where a vertex is in it, 0 where it is not."""
     group = obj.vertex_groups.get(name)
     if group is None:
         raise ValueError(f"{obj.name}: no vertex group named {name!r}")
     w = np.zeros(len(obj.data.vertices), dtype=np.float64)
+    index = group.index
     for v in obj.data.vertices:
         for g in v.groups:
-            if g.group == group.index:
+            if g.group == index:
                 w[v.index] = g.weight
+                break
     return w
 
 
@@ -44,13 +47,21 @@ class _Massage:
         description="Write the corrected positions to new shape keys named <key>.massaged "
                     "instead of replacing each key's positions")
     vertex_group: bpy.props.StringProperty(
-        name="Weights", description="Vertex group used as per-vertex weights (needs a module "
-                                    "with the vertex weights feature); empty: none")
+        name="Weights", description="Vertex group whose weights are massage.vertex_weights "
+                                    "(1 massages fully, 0 keeps the vertex; vertices not in the "
+                                    "group: 0). Not given: the panel's choice; empty: none")
 
     @classmethod
     def poll(cls, context):
         obj = context.active_object
         return obj is not None and obj.type == "MESH" and context.mode == "OBJECT"
+
+    def setting(self, obj, name):
+        """The operator's `name` when given (from a script, or the panel's button), else the
+        object's panel option of that name."""
+        if self.properties.is_property_set(name) or not hasattr(obj.seqmassage, name):
+            return getattr(self, name)
+        return getattr(obj.seqmassage, name)
 
     def massager(self, context, obj, template, tris):
         """(module, Massager), or None after reporting why."""
@@ -62,13 +73,14 @@ class _Massage:
             properties.register_options()
         kwargs = schema.massage_kwargs(m, obj.seqmassage)
         weights = None
-        if self.vertex_group:
+        vertex_group = self.setting(obj, "vertex_group")
+        if vertex_group:
             if not schema.accepts(m, "vertex_weights"):
                 self.report({"ERROR"}, "vertex group weights need a seqmassage module with the "
                                        "vertex weights feature (massage.vertex_weights)")
                 return None
             try:
-                weights = group_weights(obj, self.vertex_group)
+                weights = group_weights(obj, vertex_group)
             except ValueError as e:
                 self.report({"ERROR"}, str(e))
                 return None
@@ -116,17 +128,18 @@ class SEQMASSAGE_OT_massage_shape_keys(_Massage, bpy.types.Operator):
             results.append(r)
             wm.progress_update(k + 1)
         wm.progress_end()
+        keep = self.setting(obj, "keep_original")
         for kb, r in zip(frames, results):
-            self.store(obj, kb, r)
+            self.store(obj, kb, r, keep)
             self.report({"INFO"} if r.ok else {"WARNING"}, massaging.describe(kb.name, r))
         self.report({"INFO"}, summary(f"{obj.name}: {len(frames)} shape keys", results))
         return {"FINISHED"}
 
-    def store(self, obj, kb, r):
-        if not r.ok and self.keep_original:
+    def store(self, obj, kb, r, keep_original):
+        if not r.ok and keep_original:
             return
         target = kb
-        if self.keep_original:
+        if keep_original:
             name = kb.name + MASSAGED
             target = obj.data.shape_keys.key_blocks.get(name)
             if target is None:

@@ -64,7 +64,8 @@ def _wrap(text, width):
 
 def _operator_settings(weights_supported):
     weights_doc = ("Vertex group whose weights (0 to 1) say how strongly each vertex is massaged "
-                   "(massage.vertex_weights): 1 fully, 0 keeps the vertex as it is")
+                   "(massage.vertex_weights): 1 fully, 0 keeps the vertex as it is; vertices "
+                   "not in the group keep theirs (weight 0). Empty: every vertex fully")
     if not weights_supported:
         weights_doc += (". Needs a seqmassage module with the vertex weights feature "
                         "(massage.vertex_weights); this one has not")

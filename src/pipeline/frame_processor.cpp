@@ -113,32 +113,34 @@ void FrameProcessor::repair(ProcessedFrame& f) const {
   std::vector<int> folded;
   const int count =
       count_folded_triangles(templ_.F, topology, f.input.mesh.V, result.V, &folded).folded;
+  f.folded = count;
   if (count == 0 || fold_limit_exceeded(count).empty()) return;
   const FoldRepair fix = repair_folds(templ_, massage_, topology, f.input.mesh.V, *f.reference,
                                       folded, checks_.repair_rings, checks_.repair_rounds);
   const std::string what = "fold repair: " + std::to_string(count) + " folded triangles";
+  const std::string rounds = std::to_string(fix.rounds) + (fix.rounds == 1 ? " round" : " rounds");
   if (fix.repaired) {
     result.V = fix.V;
-    s.warnings.push_back(what + " repaired in " + std::to_string(fix.rounds) + " rounds, " +
+    f.folded = 0;
+    s.warnings.push_back(what + " repaired in " + rounds + ", " +
                          std::to_string(fix.pinned) + " vertices kept at the input and " +
                          std::to_string(fix.weighted) + " pulled towards it");
   } else {
     s.warnings.push_back(what + " not repaired: " +
                          (fix.failure.empty() ? std::to_string(fix.folded_left) +
-                                                    " still folded after " +
-                                                    std::to_string(fix.rounds) + " rounds"
+                                                    " still folded after " + rounds
                                               : "the re-solve failed: " + fix.failure));
   }
 }
 
 std::string FrameProcessor::fold_check(const ProcessedFrame& f, const Positions& V,
                                        int& folded) const {
-  const FoldCount folds =
-      count_folded_triangles(templ_.F, massager_->topology(), f.input.mesh.V, V);
-  folded = folds.folded;
-  const std::string over = fold_limit_exceeded(folds.folded);
+  folded = f.folded ? *f.folded
+                    : count_folded_triangles(templ_.F, massager_->topology(), f.input.mesh.V, V)
+                          .folded;
+  const std::string over = fold_limit_exceeded(folded);
   if (over.empty()) return "";
-  return "folded triangles: " + std::to_string(folds.folded) +
+  return "folded triangles: " + std::to_string(folded) +
          " output triangles are folded over (normal opposed to the input frame's), more than " +
          over;
 }

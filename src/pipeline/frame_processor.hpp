@@ -32,6 +32,9 @@ struct ProcessedFrame {
   /// The shear after every iteration of `result`, when an output asked for it.
   std::vector<std::optional<DistortionSummary>> shear_per_iteration;
   Eigen::VectorXd shear_before, shear_after;  ///< eq. 8 per triangle (m values)
+  /// Folded triangles of `result.V` against the input, when the fold repair already counted them
+  /// (so check() does not count them again).
+  std::optional<int> folded;
   FrameSummary summary;
 };
 

@@ -64,6 +64,24 @@ Triangles to_triangles(const py::handle& object, const char* what) {
   return F;
 }
 
+std::vector<double> to_numbers(const py::handle& object, const std::string& path) {
+  const bool sequence = py::isinstance<py::array>(object) || py::isinstance<py::list>(object) ||
+                        py::isinstance<py::tuple>(object);
+  if (!sequence)
+    throw ConfigError(path + ": expected an array of numbers, got a " + type_name(object));
+  py::array a = py::array::ensure(object);
+  if (!a) throw ConfigError(path + ": expected an array of numbers");
+  const char kind = a.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u' && kind != 'b')
+    throw ConfigError(path + ": expected an array of numbers, got dtype " +
+                      py::str(a.dtype()).cast<std::string>());
+  if (a.ndim() != 1)
+    throw ConfigError(path + ": expected a 1-D array (one number per vertex), got shape " +
+                      shape_text(a));
+  const auto doubles = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  return std::vector<double>(doubles.data(), doubles.data() + doubles.size());
+}
+
 py::array_t<double> to_numpy(const Positions& V) {
   py::array_t<double> out({static_cast<py::ssize_t>(V.rows()), py::ssize_t{3}});
   if (V.size() > 0) std::memcpy(out.mutable_data(), V.data(), sizeof(double) * V.size());

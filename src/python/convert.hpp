@@ -2,6 +2,7 @@
 /// The Python module's conversions (internal to src/python): numpy arrays to the library's mesh
 /// types and back, Python values to JSON (the config reader's input) and back.
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
@@ -25,6 +26,11 @@ Positions to_positions(const DoubleArray& array, const char* what);
 /// InputError naming `what` for another shape, a non-integer dtype or an index outside
 /// [0, 2^31 − 1] (validate_mesh checks it against the vertex count).
 Triangles to_triangles(const py::handle& object, const char* what);
+
+/// `object` (a 1-D array or list of numbers: integers, floats or booleans) as doubles, copied.
+/// Throws ConfigError "<path>: expected ..., got ..." (the config reader's style) for another
+/// shape or dtype.
+std::vector<double> to_numbers(const py::handle& object, const std::string& path);
 
 /// A new numpy array (n×3 float64) holding a copy of `V`.
 py::array_t<double> to_numpy(const Positions& V);

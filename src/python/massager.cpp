@@ -5,10 +5,12 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <pybind11/stl.h>  // std::optional (Result.failure)
 
 #include "io/options_json.hpp"
+#include "io/vertex_weights.hpp"
 #include "massage/massage.hpp"
 #include "mesh/errors.hpp"
 #include "python/bindings.hpp"
@@ -71,15 +73,51 @@ Result to_result(MassageResult&& r) {
   return out;
 }
 
+// vertex_weights given as numbers (a numpy array or a list) rather than a file: not for the
+// config's reader, which takes a path.
+bool weights_as_numbers(const py::handle& value) {
+  return !value.is_none() && !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value) &&
+         !py::hasattr(value, "__fspath__");
+}
+
+// massage.vertex_weights as numbers: one per template vertex, each in [0, 1], with the config
+// reader's messages ("massage.vertex_weights[16]: expected a number in [0, 1], got 1.5").
+std::vector<double> weights_from_numbers(const py::handle& value, Eigen::Index vertices) {
+  const std::string path = "massage.vertex_weights";
+  std::vector<double> w = to_numbers(value, path);
+  if (static_cast<Eigen::Index>(w.size()) != vertices)
+    fail_at(path, "expected " + std::to_string(vertices) +
+                      " weights (one per vertex of template_vertices), got " +
+                      std::to_string(w.size()));
+  for (size_t i = 0; i < w.size(); ++i)
+    if (!(w[i] >= 0.0 && w[i] <= 1.0))  // also NaN
+      fail_at(path + "[" + std::to_string(i) + "]",
+              "expected " + describe_numbers(closed(0, 1)) + ", got " +
+                  py::repr(py::float_(w[i])).cast<std::string>());
+  return w;
+}
+
 class PyMassager {
  public:
   PyMassager(const DoubleArray& template_vertices, const py::handle& triangles,
              const py::kwargs& massage) {
     MassageOptions options;
+    // A copy, from which vertex_weights as numbers is taken out.
+    py::dict keys = massage.attr("copy")().cast<py::dict>();
+    py::object numbers = py::none();
+    if (keys.contains("vertex_weights") && weights_as_numbers(keys["vertex_weights"]))
+      numbers = keys.attr("pop")("vertex_weights");
     // The config's reader on the config's "massage" object: the same keys, checks and messages.
-    read_options(to_json(massage, "massage"), options, fs::current_path(), "massage");
+    read_options(to_json(keys, "massage"), options, fs::current_path(), "massage");
     TriMesh templ{to_positions(template_vertices, "template_vertices"),
                   to_triangles(triangles, "triangles")};
+    // The weights as the jobs take them: numbers directly, a file (relative to the working
+    // directory) read as the config's.
+    if (!numbers.is_none())
+      options.vertex_weights = weights_from_numbers(numbers, templ.V.rows());
+    else if (!options.vertex_weights_file.empty())
+      options.vertex_weights = read_vertex_weights(
+          options.vertex_weights_file, static_cast<int>(templ.V.rows()), "template_vertices");
     py::gil_scoped_release unlocked;
     engine_ = std::make_shared<const Massager>(templ, std::move(options), "template");
   }

@@ -5,6 +5,7 @@
 # build/src/cli/seqmassage, which the tests compare against).
 #   bash tests/blender/run.sh          (tools/test.sh runs it after the Release tests)
 #   bash tests/blender/run.sh mesh_cache   only test_mesh_cache.py
+#   SEQMASSAGE_BUILD_DIR=build-dev bash tests/blender/run.sh   another build folder than build/
 # Exit status: 0 passed; 1 failed; 3 skipped (no blender, or the module is not built).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -14,15 +15,19 @@ if ! command -v blender >/dev/null 2>&1; then
   log "SKIPPED: blender is not installed (bash tools/setup.sh installs it as an extra)"
   exit 3
 fi
-module_dir="$root/build/python"
+build="${SEQMASSAGE_BUILD_DIR:-build}"
+case "$build" in /*) ;; *) build="$root/$build" ;; esac
+module_dir="$build/python"
 if ! compgen -G "$module_dir/seqmassage*.so" >/dev/null; then
   log "SKIPPED: the seqmassage Python module is not built ($module_dir/seqmassage*.so);" \
     "CMake builds it when it finds Python 3 and pybind11"
   exit 3
 fi
-[ -x "$root/build/src/cli/seqmassage" ] || { log "FAILED: no build/src/cli/seqmassage"; exit 1; }
+cli="$build/src/cli/seqmassage"
+[ -x "$cli" ] || { log "FAILED: no $cli"; exit 1; }
 
-export SEQMASSAGE_ROOT="$root" SEQMASSAGE_MODULE_DIR="$module_dir"
+export SEQMASSAGE_ROOT="$root" SEQMASSAGE_MODULE_DIR="$module_dir" SEQMASSAGE_CLI="$cli" \
+  SEQMASSAGE_TEST_DIR="$build/blender-test"
 # The add-on must find the module itself (its preferences), not through the environment.
 unset PYTHONPATH
 failed=0
@@ -30,7 +35,7 @@ for test in "$root"/tests/blender/test_"${1:-}"*.py; do
   name="$(basename "$test")"
   start=$SECONDS
   status=0
-  out="$root/build/blender-test/$name.log"
+  out="$build/blender-test/$name.log"
   mkdir -p "$(dirname "$out")"
   blender -b --factory-startup --python-exit-code 1 --python "$test" >"$out" 2>&1 || status=$?
   grep -E "^(test_[a-z_]+\.py|Info|Warning|Error):" "$out" || true

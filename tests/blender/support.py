@@ -3,7 +3,8 @@ OBJ frames for the command line, and checks that fail the Blender process.
 
 Run inside Blender (tests/blender/run.sh): `blender -b --factory-startup --python-exit-code 1
 --python tests/blender/test_x.py`. SEQMASSAGE_ROOT is the checkout, SEQMASSAGE_MODULE_DIR the
-folder of the built module (build/python).
+folder of the built module (build/python), SEQMASSAGE_CLI the command line next to it and
+SEQMASSAGE_TEST_DIR the folder for the tests' files.
 """
 import math
 import os
@@ -18,7 +19,8 @@ import numpy as np
 ROOT = os.environ.get("SEQMASSAGE_ROOT") or os.path.abspath(
     os.path.join(os.path.dirname(__file__), "..", ".."))
 MODULE_DIR = os.environ.get("SEQMASSAGE_MODULE_DIR") or os.path.join(ROOT, "build", "python")
-CLI = os.path.join(ROOT, "build", "src", "cli", "seqmassage")
+CLI = os.environ.get("SEQMASSAGE_CLI") or os.path.join(ROOT, "build", "src", "cli", "seqmassage")
+TEST_DIR = os.environ.get("SEQMASSAGE_TEST_DIR") or os.path.join(ROOT, "build", "blender-test")
 ADDON = "seqmassage_blender"
 
 
@@ -33,7 +35,7 @@ def check(condition, what):
 
 
 def work_dir(name):
-    path = os.path.join(ROOT, "build", "blender-test", name)
+    path = os.path.join(TEST_DIR, name)
     shutil.rmtree(path, ignore_errors=True)
     os.makedirs(path)
     return path
@@ -140,10 +142,14 @@ def evaluated_positions(obj, frame):
 # --- The command line ---------------------------------------------------------------------------
 
 def write_obj(path, vertices, tris):
-    """An OBJ whose coordinates are the float32 values exactly (9 significant digits)."""
+    """An OBJ whose coordinates read back as exactly the float32 values, as doubles: written by
+    the shortest text of each float32 value widened to float64 (repr), so the command line reads
+    the doubles the add-on gets from a shape key. (Nine significant digits identify a float32,
+    but the command line parses them as a double, which is then another number: 0.461939752 for
+    the float32 0.4619397521018982, 4.6e-9 off.)"""
     with open(path, "w") as f:
-        for v in np.asarray(vertices, dtype=np.float32):
-            f.write("v %.9g %.9g %.9g\n" % tuple(float(c) for c in v))
+        for v in np.asarray(vertices, dtype=np.float32).astype(np.float64):
+            f.write("v %s %s %s\n" % tuple(repr(float(c)) for c in v))
         for t in tris:
             f.write("f %d %d %d\n" % tuple(int(i) + 1 for i in t))
 

@@ -65,7 +65,8 @@ def main():
 
     template = np.asarray(frames[0], dtype=np.float32).astype(np.float64)
     cli = cli_frames(frames, tris, work)
-    check(np.array_equal(cli[0], template), "the command line keeps template frame 0")
+    check(np.array_equal(cli[0], template),
+          "the command line writes template frame 0 as it read it: the basis key's values")
     worst = 0.0
     exact = 0
     for k in range(1, len(frames)):
@@ -82,6 +83,9 @@ def main():
         f"{exact} of {len(frames) - 1} frames equal as float32")
     check(worst <= 2 * np.finfo(np.float32).eps * scale,
           "the add-on's positions equal the command line's to float32 precision")
+    # The same doubles in (the OBJ holds the keys' float32 values exactly), the same code path:
+    # the keys are the command line's positions rounded to float32, bit for bit.
+    check(exact == len(frames) - 1, "every key is the command line's frame as float32")
 
     massaged = {k: key_positions(obj, f"frame_{k}.massaged") for k in range(1, len(frames))}
     check(bpy.ops.seqmassage.massage_shape_keys() == {"FINISHED"},

@@ -3,6 +3,7 @@
 // fold the output there; the repair removes the fold and leaves the rest of the frame's result.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 
 #include "massage/massage.hpp"
@@ -111,4 +112,37 @@ TEST_CASE("the repair removes a fold the massage makes and keeps the result else
   REQUIRE(far > 100);
   CHECK(moved / far > 0.02);
   CHECK(changed < 0.25 * moved);
+}
+
+TEST_CASE("with 0 rings the repair keeps just the folds' corners at the input") {
+  // 35 vertices pushed five cells across their neighbours: over a hundred folded triangles.
+  // (Tried as a case where the repair fails, with 1 round and no ramp: the repair still
+  // succeeds, so the unrepaired path is covered by the frame checks' tests only.)
+  std::vector<int> pushed;
+  for (int y = 5; y <= 11; ++y)
+    for (int x = 4; x <= 12; x += 2) pushed.push_back(vertex_at(x, y));
+  const FoldCase c = fold_case(pushed, 5.0);
+  const MassageOptions o = template_target();
+  const Massager massager(c.templ, o);
+  const Reference reference(c.input, o.samples, "input", massager.shared_topology());
+  const MassageResult first = massager.run(c.input.V, reference);
+  REQUIRE(first.ok);
+  std::vector<int> folded;
+  const int before = count_folded_triangles(c.templ.F, c.topology, c.input.V, first.V, &folded)
+                         .folded;
+  INFO("folded before the repair: " << before);
+  REQUIRE(before > 50);
+  std::vector<unsigned char> corner(size_t(c.input.num_vertices()), 0);
+  for (int t : folded)
+    for (int a = 0; a < 3; ++a) corner[size_t(c.templ.F(t, a))] = 1;
+
+  const FoldRepair fix = repair_folds(c.templ, o, c.topology, c.input.V, reference, folded, 0, 1);
+  REQUIRE(fix.repaired);
+  CHECK(fix.failure.empty());
+  CHECK(fix.rounds == 1);
+  CHECK(fix.weighted == 0);  // no ramp
+  CHECK(fix.pinned == std::count(corner.begin(), corner.end(), 1));
+  for (int i = 0; i < c.input.num_vertices(); ++i)
+    if (corner[size_t(i)]) REQUIRE(fix.V.row(i) == c.input.V.row(i));
+  CHECK(count_folded_triangles(c.templ.F, c.topology, c.input.V, fix.V).folded == 0);
 }
