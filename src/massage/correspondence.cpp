@@ -3,69 +3,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <array>
-
 #include "geometry/closest_point.hpp"
 #include "geometry/surface_walk.hpp"
 
 namespace sm {
-
 namespace {
-
-// The queries come in vertex order, not triangle order (the crane's is not spatial), so the
-// walks' reads are random: fetch them ahead, in two stages. 2·kAhead queries ahead, the start
-// triangle's corners (a row of F) and neighbours (of the topology); kAhead ahead, its frame and
-// corner positions, for the full test when the query is not over its face, and its edge
-// neighbours' frames where no bends spare their tests (M's frames). Answers do not depend on it.
-class WalkPrefetch {
- public:
-  static constexpr int kAhead = 8;
-
-  WalkPrefetch(const SurfaceView& surface, bool exact, const std::vector<SurfacePoint>& corr)
-      : V_(*surface.V),
-        F_(*surface.F),
-        across_(surface.topology->triangle_neighbours),
-        corr_(corr),
-        m_(static_cast<int>(F_.rows())) {
-    if (!exact && surface.planes && surface.planes->size() == m_ && across_.size() == size_t(m_))
-      ahead_ = surface.planes;  // (a mismatch throws in the walk)
-    neighbours_ahead_ = ahead_ && !ahead_->has_bends();
-  }
-
-  // Before the query i of a block that ends at `end`.
-  void operator()(int i, int end) const {
-    if (!ahead_) return;
-    if (i + 2 * kAhead < end) {
-      if (const int t = start_of(i + 2 * kAhead); t >= 0) {
-        __builtin_prefetch(&F_(t, 0));
-        __builtin_prefetch(&across_[t]);
-      }
-    }
-    if (i + kAhead < end) {
-      if (const int t = start_of(i + kAhead); t >= 0) {
-        ahead_->prefetch(t);
-        for (int k = 0; k < 3; ++k) __builtin_prefetch(&V_(F_(t, k), 0));
-        if (neighbours_ahead_)
-          for (const int u : across_[t])
-            if (u >= 0) ahead_->prefetch(u);
-      }
-    }
-  }
-
- private:
-  int start_of(int i) const {  // the triangle a walk will start on, -1 for none or a bad one
-    const int t = corr_[i].triangle;
-    return t < m_ ? t : -1;
-  }
-
-  const Positions& V_;
-  const Triangles& F_;
-  const std::vector<std::array<int, 3>>& across_;
-  const std::vector<SurfacePoint>& corr_;
-  const int m_;
-  const TrianglePlanes* ahead_ = nullptr;
-  bool neighbours_ahead_ = false;
-};
 
 // The local answer for the query p from c's triangle: true when it is final; otherwise c holds
 // the bound for the exact query (the best point seen, or none).
@@ -103,10 +45,42 @@ int update_correspondences(const SurfaceView& surface, const Positions& points, 
   // Pass 1: the local answers. corr[i] keeps a bound (the best point seen, or none) where the
   // exact query is still needed.
   std::vector<unsigned char> pending(count, 0);
-  const WalkPrefetch prefetch(surface, exact, corr);
+  // The queries come in vertex order, not triangle order (the crane's is not spatial), so the
+  // walks' reads are random: fetch them ahead, in two stages. 2·kAhead queries ahead, the start
+  // triangle's corners (a row of F) and neighbours (of the topology); kAhead ahead, its frame and
+  // corner positions, for the full test when the query is not over its face, and its edge
+  // neighbours' frames where no bends spare their tests (M's frames). Answers do not depend on it.
+  constexpr int kAhead = 8;
+  const Positions& V = *surface.V;
+  const Triangles& F = *surface.F;
+  const auto& across = surface.topology->triangle_neighbours;
+  const int m = static_cast<int>(F.rows());
+  const TrianglePlanes* ahead =
+      !exact && surface.planes && surface.planes->size() == m && across.size() == size_t(m)
+          ? surface.planes
+          : nullptr;  // (a mismatch throws in the walk)
+  const bool neighbours_ahead = ahead && !ahead->has_bends();
+  auto start_of = [&](int i) {  // the triangle a walk will start on, -1 for none or a bad one
+    const int t = corr[i].triangle;
+    return t < m ? t : -1;
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, count, 1024), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i != r.end(); ++i) {
-      prefetch(i, r.end());
+      if (ahead && i + 2 * kAhead < r.end()) {
+        if (const int t = start_of(i + 2 * kAhead); t >= 0) {
+          __builtin_prefetch(&F(t, 0));
+          __builtin_prefetch(&across[t]);
+        }
+      }
+      if (ahead && i + kAhead < r.end()) {
+        if (const int t = start_of(i + kAhead); t >= 0) {
+          ahead->prefetch(t);
+          for (int k = 0; k < 3; ++k) __builtin_prefetch(&V(F(t, k), 0));
+          if (neighbours_ahead)
+            for (const int u : across[t])
+              if (u >= 0) ahead->prefetch(u);
+        }
+      }
       if (!local_answer(surface, points.row(i).transpose(), exact, max_steps, corr[i]))
         pending[i] = 1;
     }
