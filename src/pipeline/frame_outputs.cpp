@@ -5,6 +5,7 @@
 #include "pipeline/frame_output.hpp"
 #include "pipeline/output_checker.hpp"
 #include "pipeline/output_colored.hpp"
+#include "pipeline/output_displacement.hpp"
 #include "pipeline/output_distortion.hpp"
 #include "pipeline/output_frames.hpp"
 #include "pipeline/output_iterations.hpp"
@@ -18,6 +19,7 @@ const std::vector<OutputEntry>& output_registry() {
       output<GlbFramesOutput>(),
       output<PointCacheOutput>(),
       output<DistortionCsvOutput>(),
+      output<DisplacementCsvOutput>(),
       output<ColoredPlyOutput>(),
       output<CheckerObjOutput>(),
       output<IterationsCsvOutput>(),

@@ -190,6 +190,7 @@ struct OutputOptions {
   GltfWriteOptions gltf;
   PointCacheOutputOptions point_cache;
   bool per_triangle_csv = false;
+  bool displacement_csv = false;
   bool timings = true;  ///< false: 0 seconds, so that a run reproduces every output byte
   OnFailure on_failure = OnFailure::CopyInput;
   ColoredOutputOptions colored;
@@ -220,6 +221,10 @@ inline const Fields<OutputOptions>& fields_of<OutputOptions>() {
       field<&O::per_triangle_csv>("per_triangle_csv", any_value(),
                                   "also write `distortion/<frame name>.csv`: "
                                   "`triangle,shear_before,shear_after` (eq. 8)"),
+      field<&O::displacement_csv>("displacement_csv", any_value(),
+                                  "also write `displacement/<frame name>.csv`: `vertex,dx,dy,dz`, "
+                                  "each vertex's output minus its input (the correction, to carry "
+                                  "onto data that shares the frame's vertices)"),
       field<&O::timings>("timings", any_value(),
                          "run times in `summary.csv` and `report.json`; `false` writes 0 in "
                          "`summary.csv`'s `seconds` and leaves `report.json`'s `run` out, so "

@@ -295,3 +295,36 @@ TEST_CASE("shear per iteration is measured on the iterates of the frame's one ru
   }
   CHECK(rows[3].shear->mean < rows[1].shear->mean);
 }
+
+TEST_CASE("displacement CSVs hold every vertex's output minus its input") {
+  test::TempDir dir("extras_displacement");
+  SequenceJobOptions c = visual_job(dir.path(), 4);
+  c.output.displacement_csv = true;
+  const SequencePlan plan = plan_sequence_job(c);
+  CHECK(describe_plan(plan).find("displacement/<name>.csv (4 files)") != std::string::npos);
+  CHECK(outputs_help().find("displacement/<frame>.csv") != std::string::npos);
+  run_sequence_job(plan);
+  for (int frame = 0; frame < 4; ++frame) {
+    const std::string name = "frame_000" + std::to_string(frame);
+    INFO(name);
+    const auto csv = read_csv(dir / ("out/displacement/" + name + ".csv"));
+    const TriMesh in = read_obj(dir / ("in/" + name + ".obj")).mesh;
+    const TriMesh out = read_obj(dir / ("out/frames/" + name + ".obj")).mesh;
+    REQUIRE(csv.size() == size_t(in.num_vertices()) + 1);
+    CHECK(csv[0] == std::vector<std::string>{"vertex", "dx", "dy", "dz"});
+    double moved = 0.0;
+    for (Eigen::Index v = 0; v < in.num_vertices(); ++v) {
+      const auto& row = csv[size_t(v) + 1];
+      REQUIRE(std::stol(row[0]) == v);
+      for (int k = 0; k < 3; ++k) {
+        const double d = std::stod(row[size_t(k) + 1]);
+        CHECK(in.V(v, k) + d == Approx(out.V(v, k)).margin(1e-12));
+        moved += std::abs(d);
+      }
+    }
+    if (frame == 0) CHECK(moved == 0.0);  // the template frame is written as it is
+    if (frame > 0) CHECK(moved > 0.0);
+  }
+  const json record = json::parse(read_file(dir / "out/records/frame_0002.json"));
+  CHECK(record.dump().find("displacement/frame_0002.csv") != std::string::npos);
+}
