@@ -59,36 +59,69 @@ def strip(text):
     return "".join(out)
 
 
+def statement_before(text, i):
+    """Start of the statement that the `{` at `i` ends: back to the previous ; { or } outside
+    parentheses (a default argument `= {}` belongs to the signature)."""
+    depth, j = 0, i - 1
+    while j >= 0:
+        c = text[j]
+        if c == ")":
+            depth += 1
+        elif c == "(":
+            depth -= 1
+        elif depth <= 0 and c in ";{}":
+            return j + 1
+        j -= 1
+    return 0
+
+
+SIGNATURE = re.compile(r"\)\s*(const|override|final|noexcept|mutable|->\s*[\w:<>&*, ]+|\s|:[^;]*)*$")
+# A brace initializer in a constructor's member initializer list: `) : a_{x}` or `, b_{y}`.
+INIT_LIST_START = re.compile(r"\)\s*(const\s*|noexcept\s*)*:\s*[^;]*[\w>]\s*$")
+NAME = re.compile(r"((?:[~\w]+::)*operator\s*(?:\(\s*\)|[^\s(]+)|[~\w:]+(?:<[^()<>]*>)?)\s*\(")
+
+
 def functions(path):
     text = strip(open(os.path.join(ROOT, path)).read())
     lines = text.split("\n")
     line_of = []
     for k, line in enumerate(lines):
         line_of.extend([k + 1] * (len(line) + 1))
-    found, stack, i = [], [], 0
-    # stack entries: (kind, start line, name); kind "fn" or "scope"
+    found, stack = [], []
+    # stack entries: (kind, start line, name); kind "fn", "init" (a constructor's brace
+    # initializer, carrying the constructor's start and name) or "scope"
+    ctor = None  # (end of the last closed "init" brace, start line, name)
     for m in re.finditer(r"[{}]", text):
         i = m.start()
         if text[i] == "{":
             inside_fn = any(k == "fn" for k, _, _ in stack)
-            head = text[max(0, i - 400):i]
-            # the statement before the brace, back to the previous ; { or }
-            cut = max(head.rfind(";"), head.rfind("{"), head.rfind("}"))
-            stmt = head[cut + 1:]
-            is_fn = (not inside_fn and re.search(r"\)\s*(const|override|final|noexcept|"
-                                                 r"mutable|->\s*[\w:<>&*, ]+|\s|:[^;]*)*$", stmt)
-                     and not re.match(r"\s*(namespace|class|struct|enum|union)\b", stmt)
-                     and not re.search(r"\b(if|for|while|switch|catch)\s*\(", stmt.split("(")[0] + "("))
-            if is_fn:
-                start_pos = i - len(stmt) + (len(stmt) - len(stmt.lstrip()))
-                name = re.search(r"([~\w:]+(?:operator\S*)?)\s*\(", stmt)
-                stack.append(("fn", line_of[start_pos], name.group(1) if name else "?"))
+            cut = statement_before(text, i)
+            stmt = text[cut:i]
+            start_pos = cut + (len(stmt) - len(stmt.lstrip()))
+            if inside_fn:
+                stack.append(("scope", 0, ""))
+                continue
+            if ctor and cut == ctor[0] and re.fullmatch(r"[\s,\w:<>()&*.\[\]+-]*", stmt):
+                # after a brace initializer: another one, or the constructor's body
+                kind = "init" if re.search(r"[\w>]\s*$", stmt) else "fn"
+                stack.append((kind, ctor[1], ctor[2]))
+                continue
+            head = stmt.split("(")[0] + "("
+            plausible = (not re.match(r"\s*(namespace|class|struct|enum|union)\b", stmt)
+                         and not re.search(r"\b(if|for|while|switch|catch)\s*\(", head))
+            name = NAME.search(stmt)
+            name = (re.sub(r"\s+", "", name.group(1)) if name else "(lambda)" if "[" in stmt else "?")
+            if plausible and INIT_LIST_START.search(stmt):
+                stack.append(("init", line_of[start_pos], name))
+            elif plausible and SIGNATURE.search(stmt):
+                stack.append(("fn", line_of[start_pos], name))
             else:
                 stack.append(("scope", 0, ""))
         else:
             if not stack:
                 continue
             kind, start, name = stack.pop()
+            ctor = (i + 1, start, name) if kind == "init" else None
             if kind == "fn":
                 found.append((line_of[i] - start + 1, path, start, name))
     return found

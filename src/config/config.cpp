@@ -19,15 +19,20 @@ const json& member(const json& object, const std::string& key) {
   return has(object, key) ? object.at(key) : absent;
 }
 
-// The keys of `S` that `T` does not have (the sequence job's keys a single-mesh job refuses).
+// Checks the keys of `object` at `path` against those of `options` (a single-mesh job's); a key
+// that only the sequence job's S has is refused with `note` ("only for "job": "sequence"; ...").
 template <class S, class T>
-std::vector<std::string> keys_only_in() {
-  S s;
-  T t;
-  std::vector<std::string> out, other = keys_of(entries_of(t));
-  for (const std::string& key : keys_of(entries_of(s)))
-    if (std::find(other.begin(), other.end(), key) == other.end()) out.push_back(key);
-  return out;
+void refuse_sequence_keys(const json& object, const std::string& path, T options,
+                          const std::string& note) {
+  S sequence;
+  const std::vector<std::string> own = keys_of(entries_of(options));
+  std::vector<std::string> known = own, refused;
+  for (const std::string& key : keys_of(entries_of(sequence)))
+    if (std::find(own.begin(), own.end(), key) == own.end()) refused.push_back(key);
+  known.insert(known.end(), refused.begin(), refused.end());
+  check_keys(object, path, known);
+  for (const std::string& key : refused)
+    if (has(object, key)) fail_at(path + "." + key, "only for \"job\": \"sequence\"; " + note);
 }
 
 void validate_input(const json& input, const InputOptions& in) {
@@ -37,10 +42,10 @@ void validate_input(const json& input, const InputOptions& in) {
   if (!has(input, "gltf"))
     for (const std::string& key : keys_of(entries_of(gltf_keys)))
       if (has(input, key) && !(cache && key == "mesh"))
-        fail_at("input." + key,
-                "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)" +
-                    std::string(key == "mesh" ? "; or the mesh of a \"pc2\" or \"mdd\" cache"
-                                              : ""));
+        fail_at(
+            "input." + key,
+            "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)" +
+                std::string(key == "mesh" ? "; or the mesh of a \"pc2\" or \"mdd\" cache" : ""));
   const int given = int(has(input, "frames")) + int(has(input, "synthetic")) +
                     int(has(input, "gltf")) + int(has(input, "pc2")) + int(has(input, "mdd"));
   if (given == 0)
@@ -104,14 +109,8 @@ void read_mesh_job_input(const json& doc, MeshJobOptions& c, const fs::path& bas
                          ? "missing (\"mesh\": the remesh, and \"reference\": its source)"
                          : "missing (\"mesh\": the mesh file to optimize)");
   const json& input = doc.at("input");
-  const std::vector<std::string> refused = keys_only_in<InputOptions, MeshInputOptions>();
-  std::vector<std::string> known = keys_of(entries_of(c.input));
-  known.insert(known.end(), refused.begin(), refused.end());
-  check_keys(input, "input", known);
-  for (const std::string& key : refused)
-    if (has(input, key))
-      fail_at("input." + key, "only for \"job\": \"sequence\"; the " + job +
-                                  " job reads one mesh file from \"input.mesh\"");
+  refuse_sequence_keys<InputOptions>(input, "input", c.input,
+                                     "the " + job + " job reads one mesh file from \"input.mesh\"");
   read_options(input, c.input, base, "input");
   if (c.job == JobKind::Remesh && !has(input, "reference"))
     fail_at("input.reference",
@@ -129,15 +128,8 @@ void read_mesh_job_input(const json& doc, MeshJobOptions& c, const fs::path& bas
   if (!has(doc, "template"))
     fail_at("template",
             "missing (an object with \"mesh\": the source mesh whose triangle shapes are copied)");
-  const std::vector<std::string> sequence_only =
-      keys_only_in<TemplateOptions, MeshTemplateOptions>();
-  known = keys_of(entries_of(c.templ));
-  known.insert(known.end(), sequence_only.begin(), sequence_only.end());
-  check_keys(doc.at("template"), "template", known);
-  for (const std::string& key : sequence_only)
-    if (has(doc.at("template"), key))
-      fail_at("template." + key,
-              "only for \"job\": \"sequence\"; the crossparam template is a \"mesh\" file");
+  refuse_sequence_keys<TemplateOptions>(doc.at("template"), "template", c.templ,
+                                        "the crossparam template is a \"mesh\" file");
 }
 
 }  // namespace

@@ -161,31 +161,34 @@ void coarse_samples(int count, std::vector<double>& out, const ExactQuery& query
   });
 }
 
-DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
-                                const DistanceLayout& layout, const DistanceOptions& options,
-                                int triangles_b, DistanceWorkspace& work) {
-  const int m = A.num_triangles();
-  const bool corresponding = options.corresponding_triangles;
-  auto first_try = [&](int t, int& hint) {
+// The exact distances of A's vertices (those in a triangle) and triangle centroids, into
+// work.vertex_distance and work.centroid_distance.
+void coarse_distances(const TriMesh& A, const ExactQuery& query, const DistanceLayout& layout,
+                      bool corresponding, int triangles_b, DistanceWorkspace& work) {
+  const auto first_try = [&](int t, int& hint) {
     if (corresponding && t < triangles_b) hint = t;
   };
   const std::vector<int>& vertex_owner = layout.vertex_owner();
-  std::vector<double>& dv = work.vertex_distance;
-  std::vector<double>& dc = work.centroid_distance;
-  coarse_samples(A.num_vertices(), dv, query, [&](int v, Vec3& q, int& hint) {
+  coarse_samples(A.num_vertices(), work.vertex_distance, query, [&](int v, Vec3& q, int& hint) {
     if (vertex_owner[v] < 0) return false;  // in no triangle: not on A's surface
     q = A.vertex(v);
     first_try(vertex_owner[v], hint);
     return true;
   });
-  coarse_samples(m, dc, query, [&](int t, Vec3& q, int& hint) {
+  coarse_samples(A.num_triangles(), work.centroid_distance, query, [&](int t, Vec3& q, int& hint) {
     q = (A.vertex(A.F(t, 0)) + A.vertex(A.F(t, 1)) + A.vertex(A.F(t, 2))) / 3.0;
     first_try(t, hint);
     return true;
   });
+}
 
-  // The rule of degree 2 on every triangle (1/12 at each corner, 3/4 at the centroid), weighted
-  // by the triangle's area; the triangles count alike if they are all degenerate.
+// The rule of degree 2 on every triangle (1/12 at each corner, 3/4 at the centroid), weighted
+// by the triangle's area; the triangles count alike if they are all degenerate. Each triangle's
+// largest sample goes to work.triangle_max.
+DistanceStats quadrature(const TriMesh& A, const DistanceLayout& layout, DistanceWorkspace& work) {
+  const int m = A.num_triangles();
+  const std::vector<double>& dv = work.vertex_distance;
+  const std::vector<double>& dc = work.centroid_distance;
   DistanceStats stats;
   std::vector<double>& triangle_max = work.triangle_max;
   triangle_max.resize(m);
@@ -211,44 +214,60 @@ DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
     stats.mean = plain / m;
     stats.rms = std::sqrt(plain2 / m);
   }
-  for (int v = 0; v < A.num_vertices(); ++v) stats.samples += vertex_owner[v] >= 0;
+  for (int v = 0; v < A.num_vertices(); ++v) stats.samples += layout.vertex_owner()[v] >= 0;
   stats.samples += m;
+  return stats;
+}
 
+// One level of refinement: the triangles whose largest sample reaches `threshold` are sampled
+// at `spacing` (the edge midpoints if options.sample_edges); stats.max and samples grow.
+void refine_level(const TriMesh& A, const ExactQuery& query, const DistanceOptions& options,
+                  double spacing, double threshold, int triangles_b, DistanceWorkspace& work,
+                  DistanceStats& stats) {
+  const unsigned edges = options.sample_edges ? 0x38u : 0u;
+  std::vector<double>& triangle_max = work.triangle_max;
+  std::vector<int>& refine = work.refine;
+  std::vector<long>& count = work.count;
+  refine.clear();
+  for (int t = 0; t < A.num_triangles(); ++t)
+    if (triangle_max[t] >= threshold && triangle_max[t] > 0.0) refine.push_back(t);
+  count.assign(refine.size(), 0);
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, refine.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const int t = refine[i];
+          const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
+          int hint = options.corresponding_triangles && t < triangles_b ? t : -1;
+          double& most = triangle_max[t];
+          sample_triangle(p, edges, options.sample_faces, false, spacing, [&](const Vec3& q) {
+            most = std::max(most, std::sqrt(query(q, hint)));
+            ++count[i];
+          });
+        }
+      });
+  for (size_t i = 0; i < refine.size(); ++i) {
+    stats.samples += count[i];
+    stats.max = std::max(stats.max, triangle_max[refine[i]]);
+  }
+}
+
+DistanceStats adaptive_distance(const TriMesh& A, const ExactQuery& query,
+                                const DistanceLayout& layout, const DistanceOptions& options,
+                                int triangles_b, DistanceWorkspace& work) {
+  coarse_distances(A, query, layout, options.corresponding_triangles, triangles_b, work);
+  DistanceStats stats = quadrature(A, layout, work);
   // Refinement in two levels: at twice the spacing, the triangles whose samples reach
   // refine_above times the largest sample; then at the spacing, those whose samples so far reach
   // sqrt(refine_above) times the largest so far (the samples at twice the spacing tell better
   // where the maximum is than the vertices and centroids).
   if (!(options.sample_edges || options.sample_faces)) return stats;
   const double h = options.spacing * layout.mean_edge_length(A.V);
-  const unsigned edges = options.sample_edges ? 0x38u : 0u;
-  std::vector<int>& refine = work.refine;
-  std::vector<long>& count = work.count;
   for (const double spacing : {2.0 * h, h}) {
     const double threshold =
         (spacing > h ? options.refine_above : std::sqrt(options.refine_above)) * stats.max;
-    refine.clear();
-    for (int t = 0; t < m; ++t)
-      if (triangle_max[t] >= threshold && triangle_max[t] > 0.0) refine.push_back(t);
-    count.assign(refine.size(), 0);
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, refine.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
-          for (size_t i = r.begin(); i != r.end(); ++i) {
-            const int t = refine[i];
-            const Vec3 p[3] = {A.vertex(A.F(t, 0)), A.vertex(A.F(t, 1)), A.vertex(A.F(t, 2))};
-            int hint = corresponding && t < triangles_b ? t : -1;
-            double& most = triangle_max[t];
-            sample_triangle(p, edges, options.sample_faces, false, spacing, [&](const Vec3& q) {
-              most = std::max(most, std::sqrt(query(q, hint)));
-              ++count[i];
-            });
-          }
-        });
-    for (size_t i = 0; i < refine.size(); ++i) {
-      stats.samples += count[i];
-      stats.max = std::max(stats.max, triangle_max[refine[i]]);
-    }
+    refine_level(A, query, options, spacing, threshold, triangles_b, work, stats);
   }
-  stats.refined = static_cast<long>(refine.size());
+  stats.refined = static_cast<long>(work.refine.size());
   return stats;
 }
 
@@ -321,8 +340,8 @@ FrameDistances DistanceMeter::measure(const TriMesh& original, const TriangleBvh
   const Topology* topology = topology_.get();
   FrameDistances d;
   const TriMesh output{moved, original.F};
-  d.moved_to_original = sm::measure(output, original_bvh, options_, &original_planes, topology,
-                                    &layout_, &work);
+  d.moved_to_original =
+      sm::measure(output, original_bvh, options_, &original_planes, topology, &layout_, &work);
   work.bvh = original_bvh;  // same triangles: refit, no rebuild
   work.bvh.refit(moved);
   work.planes.update(moved, original.F, topology);

@@ -36,6 +36,15 @@ void TriangleGrid::build(const Positions& V, const Triangles& F, const TriangleP
   Eigen::AlignedBox3d box;
   for (int t = 0; t < m; ++t)
     for (int k = 0; k < 3; ++k) box.extend(V.row(F(t, k)).transpose());
+  lay_out_cells(box, cell, m);
+  count_entries(V, F);
+  fill_entries();
+  // The float box distance is off by a few units in the last place of the coordinates.
+  const double scale = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
+  margin_ = 1e-6 * (scale + cell_);
+}
+
+void TriangleGrid::lay_out_cells(const Eigen::AlignedBox3d& box, double cell, int m) {
   // One cell of margin on every side, so that queries just off the mesh's box have a cell.
   const Vec3 extent = box.sizes();
   // Enlarge the cells while the grid would be too large for the mesh.
@@ -49,12 +58,14 @@ void TriangleGrid::build(const Positions& V, const Triangles& F, const TriangleP
   inv_cell_ = 1.0 / cell;
   origin_ = box.min().array() - cell;
   for (int a = 0; a < 3; ++a) dims_[a] = static_cast<int>(std::floor(extent[a] * inv_cell_)) + 3;
-  const long num_cells = long(dims_[0]) * dims_[1] * dims_[2];
+}
 
+void TriangleGrid::count_entries(const Positions& V, const Triangles& F) {
   // Cell ranges of every triangle's box; counting sort into CSR, triangles in index order.
+  const int m = static_cast<int>(F.rows());
   std::vector<std::array<int, 6>>& range = range_;
   range.resize(m);
-  cells_.assign(num_cells + 1, 0);
+  cells_.assign(long(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
   std::vector<std::array<float, 6>>& boxes = boxes_;
   boxes.resize(m);
   for (int t = 0; t < m; ++t) {
@@ -83,6 +94,11 @@ void TriangleGrid::build(const Positions& V, const Triangles& F, const TriangleP
       for (int y = range[t][1]; y <= range[t][4]; ++y)
         for (int x = range[t][0]; x <= range[t][3]; ++x) ++cells_[cell_index(x, y, z) + 1];
   }
+}
+
+void TriangleGrid::fill_entries() {
+  const long num_cells = static_cast<long>(cells_.size()) - 1;
+  const std::vector<std::array<int, 6>>& range = range_;
   for (long c = 0; c < num_cells; ++c) cells_[c + 1] += cells_[c];
   const int entries = cells_[num_cells];
   triangle_.resize(entries);
@@ -91,19 +107,17 @@ void TriangleGrid::build(const Positions& V, const Triangles& F, const TriangleP
   fill.assign(cells_.begin(), cells_.end() - 1);
   // Scatter the triangles into their cells, then copy their boxes in entry order (one scattered
   // write per entry instead of seven).
-  for (int t = 0; t < m; ++t) {
+  for (size_t t = 0; t < range.size(); ++t) {
     if (range[t][0] < 0) continue;
     for (int z = range[t][2]; z <= range[t][5]; ++z)
       for (int y = range[t][1]; y <= range[t][4]; ++y)
-        for (int x = range[t][0]; x <= range[t][3]; ++x) triangle_[fill[cell_index(x, y, z)]++] = t;
+        for (int x = range[t][0]; x <= range[t][3]; ++x)
+          triangle_[fill[cell_index(x, y, z)]++] = static_cast<int>(t);
   }
   for (int e = 0; e < entries; ++e) {
-    const std::array<float, 6>& b = boxes[triangle_[e]];
+    const std::array<float, 6>& b = boxes_[triangle_[e]];
     for (int a = 0; a < 6; ++a) box_[a][e] = b[a];
   }
-  // The float box distance is off by a few units in the last place of the coordinates.
-  const double scale = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
-  margin_ = 1e-6 * (scale + cell_);
 }
 
 void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triangle,

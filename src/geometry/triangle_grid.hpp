@@ -45,6 +45,11 @@ class TriangleGrid {
  private:
   int cell_index(int x, int y, int z) const { return (z * dims_[1] + y) * dims_[0] + x; }
   void scan(int cell, const Vec3& p, double& best2, int& best_triangle, const int* skip) const;
+  // Steps of build(): the grid's cells over `box`, each triangle's cell range and float box with
+  // the cells' entry counts, then the entries.
+  void lay_out_cells(const Eigen::AlignedBox3d& box, double cell, int m);
+  void count_entries(const Positions& V, const Triangles& F);
+  void fill_entries();
 
   const Positions* V_ = nullptr;
   const Triangles* F_ = nullptr;

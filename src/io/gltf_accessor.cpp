@@ -168,6 +168,43 @@ const unsigned char* view_range(const GltfFile& file, int accessor, int view, ui
   return m.buffers[size_t(v.buffer)].data.data() + v.byteOffset + offset;
 }
 
+// Substitutes the sparse values of accessor `index` (element bytes each) into `out`.
+void apply_sparse(const GltfFile& file, int index, size_t element,
+                  std::vector<unsigned char>& out) {
+  const tinygltf::Accessor& a = file.model.accessors[size_t(index)];
+  const auto count = uint64_t(std::max(a.sparse.count, 0));
+  if (a.sparse.count < 1 || count > a.count) {
+    throw_gltf_error(file.path, name_of(index) + ".sparse",
+                     "count " + std::to_string(a.sparse.count) + " is not in [1, " +
+                         std::to_string(a.count) + "]");
+  }
+  const int index_type = a.sparse.indices.componentType;
+  const int isize = gltf_component_size(index_type);
+  if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+      index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+      index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+    throw_gltf_error(file.path, name_of(index) + ".sparse.indices",
+                     "componentType " + std::to_string(index_type) + " is not an unsigned int");
+  }
+  const unsigned char* ids = view_range(file, index, a.sparse.indices.bufferView,
+                                        uint64_t(std::max(a.sparse.indices.byteOffset, 0)),
+                                        count * size_t(isize), "sparse.indices");
+  const unsigned char* values = view_range(file, index, a.sparse.values.bufferView,
+                                           uint64_t(std::max(a.sparse.values.byteOffset, 0)),
+                                           count * element, "sparse.values");
+  double previous = -1;
+  for (size_t k = 0; k < count; ++k) {
+    const double id = decode_component(ids + k * size_t(isize), index_type, false);
+    if (id <= previous || id >= double(a.count)) {
+      throw_gltf_error(file.path, name_of(index) + ".sparse.indices",
+                       "index " + std::to_string(uint64_t(id)) + " at position " +
+                           std::to_string(k) + " is out of range or not increasing");
+    }
+    previous = id;
+    std::memcpy(out.data() + size_t(id) * element, values + k * element, element);
+  }
+}
+
 }  // namespace
 
 size_t gltf_element_size(int component_type, int type) {
@@ -225,39 +262,7 @@ std::vector<unsigned char> gltf_accessor_bytes(const GltfFile& file, int index) 
       std::memcpy(out.data() + e * element, src + e * stride, element);
     }
   }
-  if (a.sparse.isSparse) {
-    const auto count = uint64_t(std::max(a.sparse.count, 0));
-    if (a.sparse.count < 1 || count > a.count) {
-      throw_gltf_error(file.path, name_of(index) + ".sparse",
-                       "count " + std::to_string(a.sparse.count) + " is not in [1, " +
-                           std::to_string(a.count) + "]");
-    }
-    const int index_type = a.sparse.indices.componentType;
-    const int isize = gltf_component_size(index_type);
-    if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-        index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      throw_gltf_error(file.path, name_of(index) + ".sparse.indices",
-                       "componentType " + std::to_string(index_type) + " is not an unsigned int");
-    }
-    const unsigned char* ids = view_range(file, index, a.sparse.indices.bufferView,
-                                          uint64_t(std::max(a.sparse.indices.byteOffset, 0)),
-                                          count * size_t(isize), "sparse.indices");
-    const unsigned char* values = view_range(file, index, a.sparse.values.bufferView,
-                                             uint64_t(std::max(a.sparse.values.byteOffset, 0)),
-                                             count * element, "sparse.values");
-    double previous = -1;
-    for (size_t k = 0; k < count; ++k) {
-      const double id = decode_component(ids + k * size_t(isize), index_type, false);
-      if (id <= previous || id >= double(a.count)) {
-        throw_gltf_error(file.path, name_of(index) + ".sparse.indices",
-                         "index " + std::to_string(uint64_t(id)) + " at position " +
-                             std::to_string(k) + " is out of range or not increasing");
-      }
-      previous = id;
-      std::memcpy(out.data() + size_t(id) * element, values + k * element, element);
-    }
-  }
+  if (a.sparse.isSparse) apply_sparse(file, index, element, out);
   return out;
 }
 

@@ -88,15 +88,10 @@ std::vector<double> frame_times(const GltfInputOptions& options, const GltfRig& 
   return times;
 }
 
-}  // namespace
-
-GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
-  auto scene = std::make_shared<GltfScene>();
-  scene->file = load_gltf_file(options.file);
-  const GltfFile& file = scene->file;
+// The rig checks the nodes too, but choosing the mesh reads them first (tinygltf does not check
+// these indices; found by fuzzing).
+void check_node_references(const GltfFile& file) {
   const tinygltf::Model& m = file.model;
-  // The rig checks the nodes too, but choosing the mesh reads them first (tinygltf does not
-  // check these indices; found by fuzzing).
   for (size_t n = 0; n < m.nodes.size(); ++n) {
     const tinygltf::Node& node = m.nodes[n];
     if (node.mesh >= int(m.meshes.size())) {
@@ -108,6 +103,31 @@ GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
                        "skin " + std::to_string(node.skin) + " does not exist");
     }
   }
+}
+
+// The welded rest mesh of s.mesh's geometry and the map from glTF vertices to it.
+void weld_rest_mesh(const GltfFile& file, const GltfMeshGeometry& geometry, GltfSequence& s) {
+  GltfWeld weld = weld_by_position(geometry.base, geometry.triangles);
+  if (weld.mesh.num_triangles() == 0) {
+    throw_gltf_error(file.path, "meshes[" + std::to_string(s.mesh) + "]",
+                     "has no triangle of non-zero extent");
+  }
+  s.rest = std::move(weld.mesh);
+  s.weld_map = std::move(weld.map);
+  s.gltf_vertices = geometry.num_vertices();
+  s.welded_vertices = weld.merged;
+  s.unreferenced_vertices = weld.unreferenced;
+  s.dropped_triangles = weld.dropped_triangles;
+}
+
+}  // namespace
+
+GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
+  auto scene = std::make_shared<GltfScene>();
+  scene->file = load_gltf_file(options.file);
+  const GltfFile& file = scene->file;
+  const tinygltf::Model& m = file.model;
+  check_node_references(file);
 
   GltfSequence s;
   s.file = options.file;
@@ -143,17 +163,7 @@ GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
   scene->node = s.node;
   scene->geometry = load_gltf_mesh_geometry(file, s.mesh, m.nodes[size_t(s.node)].skin);
 
-  GltfWeld weld = weld_by_position(scene->geometry.base, scene->geometry.triangles);
-  if (weld.mesh.num_triangles() == 0) {
-    throw_gltf_error(file.path, "meshes[" + std::to_string(s.mesh) + "]",
-                     "has no triangle of non-zero extent");
-  }
-  s.rest = std::move(weld.mesh);
-  s.weld_map = std::move(weld.map);
-  s.gltf_vertices = scene->geometry.num_vertices();
-  s.welded_vertices = weld.merged;
-  s.unreferenced_vertices = weld.unreferenced;
-  s.dropped_triangles = weld.dropped_triangles;
+  weld_rest_mesh(file, scene->geometry, s);
 
   if (!options.fps && scene->rig.keyframe_times.size() > size_t(kGltfMaxFrames)) {
     throw_gltf_error(file.path, "animations[" + std::to_string(s.animation) + "]",

@@ -20,6 +20,28 @@ class OffParser {
   }
 
   TriMesh parse() {
+    int nv = 0, nf = 0;
+    read_header(nv, nf);
+    const std::vector<double> positions = read_vertices(nv);
+    std::vector<int> tris;
+    tris.reserve(3 * std::min<size_t>(static_cast<size_t>(nf), text_.size() / 8));
+    std::vector<int> poly;
+    for (int f = 0; f < nf; ++f) {
+      read_face(f, nf, nv, poly);
+      for (size_t k = 1; k + 1 < poly.size(); ++k) {
+        tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
+      }
+    }
+    TriMesh mesh;
+    mesh.V = Eigen::Map<const Positions>(positions.data(), nv, 3);
+    mesh.F =
+        Eigen::Map<const Triangles>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
+    return mesh;
+  }
+
+ private:
+  // The keyword line and the vertex and face counts (on the keyword's line or the next).
+  void read_header(int& nv, int& nf) {
     std::string_view line = next_line();
     if (!next_line_found_) throw InputError(name_ + ": empty file, expected the OFF header");
     size_t at = 0;
@@ -35,17 +57,19 @@ class OffParser {
       if (!next_line_found_) throw InputError(name_ + ": the file ends before the counts line");
     }
     at = 0;
-    const int nv = count(line, at, "vertex count");
-    const int nf = count(line, at, "face count");
+    nv = count(line, at, "vertex count");
+    nf = count(line, at, "face count");
     if (nv == 0) fail(line_, "no vertices (the vertex count is 0)");
     if (nf == 0) fail(line_, "no faces (the face count is 0)");
+  }
 
+  std::vector<double> read_vertices(int nv) {
     // The counts come from the file: allocate by what the text can hold, not by what they claim.
     std::vector<double> positions;
     positions.reserve(3 * std::min<size_t>(static_cast<size_t>(nv), text_.size() / 6));
     for (int i = 0; i < nv; ++i) {
-      line = expect_line("vertices", nv, i);
-      at = 0;
+      const std::string_view line = expect_line("vertices", nv, i);
+      size_t at = 0;
       for (int c = 0; c < 3; ++c) {
         const auto where = [&] {
           return "vertex " + std::to_string(i) + ": coordinate " + "xyz"[c];
@@ -67,52 +91,43 @@ class OffParser {
         positions.push_back(value);
       }
     }
-    std::vector<int> tris;
-    tris.reserve(3 * std::min<size_t>(static_cast<size_t>(nf), text_.size() / 8));
-    std::vector<int> poly;
-    for (int f = 0; f < nf; ++f) {
-      line = expect_line("faces", nf, f);
-      at = 0;
-      const auto face = [f] { return "face " + std::to_string(f); };
-      const std::string_view n_token = next_token(line, at);
-      int64_t n = 0;
-      if (!parse_int(n_token, n)) {
-        fail(line_, face() + ": corner count '" + std::string(n_token) + "' is not an integer");
-      }
-      if (n < 3) {
-        fail(line_, face() + ": a face needs at least 3 corners, found " + std::to_string(n));
-      }
-      poly.clear();
-      for (int64_t k = 0; k < n; ++k) {
-        const auto where = [&] { return face() + ": corner " + std::to_string(k + 1); };
-        const std::string_view token = next_token(line, at);
-        if (token.empty()) {
-          fail(line_, face() + ": expected " + std::to_string(n) + " vertex indices, found " +
-                          std::to_string(k));
-        }
-        int64_t index = 0;
-        if (!parse_int(token, index)) {
-          fail(line_, where() + ": vertex index '" + std::string(token) + "' is not an integer");
-        }
-        if (index < 0 || index >= nv) {
-          fail(line_, where() + ": vertex index " + std::to_string(index) +
-                          " is out of range (the file has " + std::to_string(nv) +
-                          " vertices, numbered from 0)");
-        }
-        poly.push_back(static_cast<int>(index));
-      }
-      for (size_t k = 1; k + 1 < poly.size(); ++k) {
-        tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
-      }
-    }
-    TriMesh mesh;
-    mesh.V = Eigen::Map<const Positions>(positions.data(), nv, 3);
-    mesh.F =
-        Eigen::Map<const Triangles>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
-    return mesh;
+    return positions;
   }
 
- private:
+  // Face f's corners into `poly`.
+  void read_face(int f, int nf, int nv, std::vector<int>& poly) {
+    const std::string_view line = expect_line("faces", nf, f);
+    size_t at = 0;
+    const auto face = [f] { return "face " + std::to_string(f); };
+    const std::string_view n_token = next_token(line, at);
+    int64_t n = 0;
+    if (!parse_int(n_token, n)) {
+      fail(line_, face() + ": corner count '" + std::string(n_token) + "' is not an integer");
+    }
+    if (n < 3) {
+      fail(line_, face() + ": a face needs at least 3 corners, found " + std::to_string(n));
+    }
+    poly.clear();
+    for (int64_t k = 0; k < n; ++k) {
+      const auto where = [&] { return face() + ": corner " + std::to_string(k + 1); };
+      const std::string_view token = next_token(line, at);
+      if (token.empty()) {
+        fail(line_, face() + ": expected " + std::to_string(n) + " vertex indices, found " +
+                        std::to_string(k));
+      }
+      int64_t index = 0;
+      if (!parse_int(token, index)) {
+        fail(line_, where() + ": vertex index '" + std::string(token) + "' is not an integer");
+      }
+      if (index < 0 || index >= nv) {
+        fail(line_, where() + ": vertex index " + std::to_string(index) +
+                        " is out of range (the file has " + std::to_string(nv) +
+                        " vertices, numbered from 0)");
+      }
+      poly.push_back(static_cast<int>(index));
+    }
+  }
+
   [[noreturn]] void fail(int line, const std::string& message) const {
     throw InputError(name_ + ":" + std::to_string(line) + ": " + message);
   }

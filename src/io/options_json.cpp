@@ -71,7 +71,8 @@ int read_integer(const json& v, const std::string& path, const ValueSpec& spec,
 
 double read_number(const json& v, const std::string& path, const ValueSpec& spec) {
   if (!v.is_number() || !spec.contains(v.get<double>()))
-    fail_at(path, "expected " + describe_numbers(spec) + ", got " + describe(v));
+    fail_at(path, "expected " + std::string(spec.auto_word ? "\"auto\" or " : "") +
+                      describe_numbers(spec) + ", got " + describe(v));
   return v.get<double>();
 }
 
@@ -217,11 +218,8 @@ void read_value(const json& v, const std::string& path, const Entry& e, const En
                  },
                  [&](std::optional<double>* out) {
                    out->reset();
-                   if (spec.auto_word ? v == "auto" : v.is_null()) return;
-                   if (spec.auto_word && !(v.is_number() && spec.contains(v.get<double>())))
-                     fail_at(path, "expected \"auto\" or " + describe_numbers(spec) + ", got " +
-                                       describe(v));
-                   *out = read_number(v, path, spec);
+                   if (!(spec.auto_word ? v == "auto" : v.is_null()))
+                     *out = read_number(v, path, spec);
                  },
                  [&](fs::path* out) { *out = read_path(v, path, base); },
                  [&](std::vector<int>* out) {

@@ -13,13 +13,12 @@
 namespace sm {
 
 namespace {
+
 std::string format_g(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
   return text;
 }
-}  // namespace
-namespace {
 
 enum class PlyType : uint8_t {
   kInt8,
@@ -265,131 +264,174 @@ int find_property(const PlyElement& e, std::string_view name, bool list) {
   return -1;
 }
 
+// Where the mesh's data sits among a PLY header's elements and properties (indices into an
+// element's properties; -1: absent).
+struct PlyLayout {
+  const PlyElement* vertex = nullptr;
+  const PlyElement* face = nullptr;
+  int xyz[3] = {-1, -1, -1};
+  int indices = -1;  ///< the face's list of vertex indices
+  int vrgb[3] = {-1, -1, -1}, frgb[3] = {-1, -1, -1};
+  bool vertex_colors = false, face_colors = false;  ///< asked for and present
+  int extra = -1;                                   ///< the extra vertex property
+};
+
+PlyLayout find_layout(const PlyHeader& header, const std::string& name, bool colors,
+                      const PlyVertexProperty* extra) {
+  PlyLayout l;
+  for (const PlyElement& e : header.elements) {
+    if (e.name == "vertex" && !l.vertex) l.vertex = &e;
+    if (e.name == "face" && !l.face) l.face = &e;
+  }
+  if (!l.vertex || l.vertex->count == 0)
+    throw InputError(name + ": no vertices (no 'vertex' element, or its count is 0)");
+  if (!l.face || l.face->count == 0)
+    throw InputError(name + ": no faces (no 'face' element, or its count is 0)");
+  for (int c = 0; c < 3; ++c) {
+    l.xyz[c] = find_property(*l.vertex, std::string(1, "xyz"[c]), false);
+    if (l.xyz[c] < 0)
+      throw InputError(name + ": the vertex element has no scalar property " + "xyz"[c]);
+  }
+  l.indices = find_property(*l.face, "vertex_indices", true);
+  if (l.indices < 0) l.indices = find_property(*l.face, "vertex_index", true);
+  if (l.indices < 0)
+    throw InputError(name + ": the face element has no list property vertex_indices");
+  for (int c = 0; c < 3; ++c) {
+    const char* channel[] = {"red", "green", "blue"};
+    l.vrgb[c] = find_property(*l.vertex, channel[c], false);
+    l.frgb[c] = find_property(*l.face, channel[c], false);
+  }
+  l.vertex_colors = colors && l.vrgb[0] >= 0 && l.vrgb[1] >= 0 && l.vrgb[2] >= 0;
+  l.face_colors = colors && l.frgb[0] >= 0 && l.frgb[1] >= 0 && l.frgb[2] >= 0;
+  l.extra = extra ? find_property(*l.vertex, extra->name, false) : -1;
+  if (extra && l.extra < 0)
+    throw InputError(name + ": the vertex element has no scalar property '" + extra->name + "'");
+  return l;
+}
+
+// Decodes the body's items in order into positions and triangles (and the colours and the extra
+// vertex property, when asked for).
+class PlyMeshReader {
+ public:
+  PlyMeshReader(std::string_view data, const PlyHeader& header, const std::string& name,
+                const PlyLayout& layout, PlyColors* colors, PlyVertexProperty* extra)
+      : body_(data, header, name),
+        l_(layout),
+        nv_(layout.vertex->count),
+        colors_(colors),
+        extra_(extra) {
+    // The counts come from the file: allocate by what the data can hold, not by what they claim.
+    positions_.reserve(3 * std::min<size_t>(static_cast<size_t>(nv_), data.size() / 3));
+  }
+
+  void read_item(const PlyElement& e, int64_t item) {
+    std::array<uint8_t, 3> rgb{};
+    double xyz[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+      const PlyProperty& p = e.properties[k];
+      if (p.list) {
+        read_list(e, item, k);
+      } else if (&e == l_.vertex) {
+        read_vertex_scalar(e, item, k, rgb, xyz);
+      } else {
+        const double value = body_.read(p.type, e, item, p);
+        for (int c = 0; c < 3 && &e == l_.face && l_.face_colors; ++c)
+          if (k == l_.frgb[c]) rgb[c] = to_channel(value, p.type);
+      }
+    }
+    if (&e == l_.vertex) positions_.insert(positions_.end(), xyz, xyz + 3);
+    if (&e == l_.vertex && l_.vertex_colors) colors_->vertex.push_back(rgb);
+    if (&e != l_.face) return;
+    for (size_t k = 1; k + 1 < poly_.size(); ++k) {  // a fan of triangles
+      tris_.insert(tris_.end(), {poly_[0], poly_[k], poly_[k + 1]});
+      if (l_.face_colors) colors_->face.push_back(rgb);
+    }
+  }
+
+  TriMesh mesh() const {
+    TriMesh mesh;
+    mesh.V = Eigen::Map<const Positions>(positions_.data(), static_cast<Eigen::Index>(nv_), 3);
+    mesh.F =
+        Eigen::Map<const Triangles>(tris_.data(), static_cast<Eigen::Index>(tris_.size() / 3), 3);
+    return mesh;
+  }
+
+ private:
+  void read_vertex_scalar(const PlyElement& e, int64_t item, int k, std::array<uint8_t, 3>& rgb,
+                          double xyz[3]) {
+    const PlyProperty& p = e.properties[k];
+    const double value = body_.read(p.type, e, item, p);
+    for (int c = 0; c < 3; ++c) {
+      if (k == l_.xyz[c]) {
+        if (!std::isfinite(value)) body_.fail(e, item, p.name + " is not finite");
+        if (std::abs(value) > kMaxCoordinate) {
+          body_.fail(e, item,
+                     p.name + " " + format_g(value) +
+                         " is too large (more than 1e18 in magnitude: the geometry would "
+                         "overflow)");
+        }
+        xyz[c] = value;
+      }
+      if (l_.vertex_colors && k == l_.vrgb[c]) rgb[c] = to_channel(value, p.type);
+    }
+    if (k == l_.extra) extra_->values.push_back(value);
+  }
+
+  // A list property; the face's vertex indices go to poly_, other lists are skipped.
+  void read_list(const PlyElement& e, int64_t item, int k) {
+    const PlyProperty& p = e.properties[k];
+    const double n = body_.read(p.count_type, e, item, p, true);
+    if (n < 0) body_.fail(e, item, p.name + ": negative list length");
+    const bool corners = &e == l_.face && k == l_.indices;
+    if (corners) poly_.clear();
+    for (int64_t j = 0; j < static_cast<int64_t>(n); ++j) {
+      const double value = body_.read(p.type, e, item, p);
+      if (!corners) continue;
+      if (!(value >= 0 && value < static_cast<double>(nv_)) || value != std::floor(value)) {
+        std::string text;
+        append_double(text, value);
+        body_.fail(e, item,
+                   "corner " + std::to_string(j + 1) + ": vertex index " + text +
+                       (value != std::floor(value)
+                            ? " is not an integer"
+                            : " is out of range (the file has " + std::to_string(nv_) +
+                                  " vertices, numbered from 0)"));
+      }
+      poly_.push_back(static_cast<int>(value));
+    }
+    if (corners && n < 3) {
+      body_.fail(
+          e, item,
+          "a face needs at least 3 corners, found " + std::to_string(static_cast<int64_t>(n)));
+    }
+  }
+
+  PlyBody body_;
+  const PlyLayout& l_;
+  const int64_t nv_;
+  PlyColors* colors_;
+  PlyVertexProperty* extra_;
+  std::vector<double> positions_;
+  std::vector<int> tris_, poly_;
+};
+
 }  // namespace
 
 TriMesh parse_ply(std::string_view data, const std::string& name, PlyColors* colors,
                   PlyVertexProperty* extra) {
   const PlyHeader header = parse_header(data, name);
-  const PlyElement* vertex_element = nullptr;
-  const PlyElement* face_element = nullptr;
-  for (const PlyElement& e : header.elements) {
-    if (e.name == "vertex" && !vertex_element) vertex_element = &e;
-    if (e.name == "face" && !face_element) face_element = &e;
-  }
-  if (!vertex_element || vertex_element->count == 0) {
-    throw InputError(name + ": no vertices (no 'vertex' element, or its count is 0)");
-  }
-  if (!face_element || face_element->count == 0) {
-    throw InputError(name + ": no faces (no 'face' element, or its count is 0)");
-  }
-  const PlyElement& ve = *vertex_element;
-  const PlyElement& fe = *face_element;
-  int xyz[3];
-  for (int c = 0; c < 3; ++c) {
-    xyz[c] = find_property(ve, std::string(1, "xyz"[c]), false);
-    if (xyz[c] < 0) {
-      throw InputError(name + ": the vertex element has no scalar property " + "xyz"[c]);
-    }
-  }
-  int indices = find_property(fe, "vertex_indices", true);
-  if (indices < 0) indices = find_property(fe, "vertex_index", true);
-  if (indices < 0) {
-    throw InputError(name + ": the face element has no list property vertex_indices");
-  }
-  const int vrgb[3] = {find_property(ve, "red", false), find_property(ve, "green", false),
-                       find_property(ve, "blue", false)};
-  const int frgb[3] = {find_property(fe, "red", false), find_property(fe, "green", false),
-                       find_property(fe, "blue", false)};
-  const bool vertex_colors = colors && vrgb[0] >= 0 && vrgb[1] >= 0 && vrgb[2] >= 0;
-  const bool face_colors = colors && frgb[0] >= 0 && frgb[1] >= 0 && frgb[2] >= 0;
+  const PlyLayout layout = find_layout(header, name, colors != nullptr, extra);
   if (colors) *colors = PlyColors{};
-  const int extra_index = extra ? find_property(ve, extra->name, false) : -1;
-  if (extra && extra_index < 0)
-    throw InputError(name + ": the vertex element has no scalar property '" + extra->name + "'");
   if (extra) extra->values.clear();
-
-  const int64_t nv = ve.count;
-  TriMesh mesh;
-  // The counts come from the file: allocate by what the data can hold, not by what they claim.
-  std::vector<double> positions;
-  positions.reserve(3 * std::min<size_t>(static_cast<size_t>(nv), data.size() / 3));
-  std::vector<int> tris, poly;
-  PlyBody body(data, header, name);
+  PlyMeshReader reader(data, header, name, layout, colors, extra);
   int done = 0;
   for (const PlyElement& e : header.elements) {
-    const bool is_vertex = &e == &ve, is_face = &e == &fe;
-    const int np = static_cast<int>(e.properties.size());
-    if (np == 0) continue;  // items without properties hold no data, however many are claimed
-    for (int64_t item = 0; item < e.count; ++item) {
-      std::array<uint8_t, 3> rgb{};
-      double xyz_value[3] = {0.0, 0.0, 0.0};
-      for (int k = 0; k < np; ++k) {
-        const PlyProperty& p = e.properties[k];
-        if (!p.list) {
-          const double value = body.read(p.type, e, item, p);
-          if (is_vertex) {
-            for (int c = 0; c < 3; ++c) {
-              if (k == xyz[c]) {
-                if (!std::isfinite(value)) body.fail(e, item, p.name + " is not finite");
-                if (std::abs(value) > kMaxCoordinate) {
-                  body.fail(e, item,
-                            p.name + " " + format_g(value) +
-                                " is too large (more than 1e18 in magnitude: the geometry "
-                                "would overflow)");
-                }
-                xyz_value[c] = value;
-              }
-              if (vertex_colors && k == vrgb[c]) rgb[c] = to_channel(value, p.type);
-            }
-            if (k == extra_index) extra->values.push_back(value);
-          } else if (is_face && face_colors) {
-            for (int c = 0; c < 3; ++c) {
-              if (k == frgb[c]) rgb[c] = to_channel(value, p.type);
-            }
-          }
-          continue;
-        }
-        const double n = body.read(p.count_type, e, item, p, true);
-        if (n < 0) body.fail(e, item, p.name + ": negative list length");
-        const bool corners = is_face && k == indices;
-        if (corners) poly.clear();
-        for (int64_t j = 0; j < static_cast<int64_t>(n); ++j) {
-          const double value = body.read(p.type, e, item, p);
-          if (!corners) continue;
-          if (!(value >= 0 && value < static_cast<double>(nv)) || value != std::floor(value)) {
-            std::string text;
-            append_double(text, value);
-            body.fail(e, item,
-                      "corner " + std::to_string(j + 1) + ": vertex index " + text +
-                          (value != std::floor(value)
-                               ? " is not an integer"
-                               : " is out of range (the file has " + std::to_string(nv) +
-                                     " vertices, numbered from 0)"));
-          }
-          poly.push_back(static_cast<int>(value));
-        }
-        if (corners && n < 3) {
-          body.fail(
-              e, item,
-              "a face needs at least 3 corners, found " + std::to_string(static_cast<int64_t>(n)));
-        }
-      }
-      if (is_vertex) positions.insert(positions.end(), xyz_value, xyz_value + 3);
-      if (is_vertex && vertex_colors) colors->vertex.push_back(rgb);
-      if (is_face) {
-        for (size_t k = 1; k + 1 < poly.size(); ++k) {
-          tris.insert(tris.end(), {poly[0], poly[k], poly[k + 1]});
-          if (face_colors) colors->face.push_back(rgb);
-        }
-      }
-    }
-    if (is_vertex) ++done;
-    if (is_face) ++done;
+    if (e.properties.empty()) continue;  // items without properties hold no data, however many
+    for (int64_t item = 0; item < e.count; ++item) reader.read_item(e, item);
+    if (&e == layout.vertex || &e == layout.face) ++done;
     if (done == 2) break;  // later elements are not needed
   }
-  mesh.V = Eigen::Map<const Positions>(positions.data(), static_cast<Eigen::Index>(nv), 3);
-  mesh.F = Eigen::Map<const Triangles>(tris.data(), static_cast<Eigen::Index>(tris.size() / 3), 3);
-  return mesh;
+  return reader.mesh();
 }
 
 TriMesh read_ply(const std::filesystem::path& path, PlyColors* colors) {

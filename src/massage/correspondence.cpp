@@ -3,9 +3,39 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/closest_point.hpp"
 #include "geometry/surface_walk.hpp"
 
 namespace sm {
+namespace {
+
+// The local answer for the query p from c's triangle: true when it is final; otherwise c holds
+// the bound for the exact query (the best point seen, or none).
+inline bool local_answer(const SurfaceView& surface, const Vec3& p, bool exact, int max_steps,
+                         SurfacePoint& c) {
+  if (c.triangle < 0) {
+    c = SurfacePoint{};
+    return false;
+  }
+  const Positions& V = *surface.V;
+  const Triangles& F = *surface.F;
+  if (!exact) {
+    if (walk_closest(V, F, *surface.topology, p, c.triangle, max_steps, c, surface.planes))
+      return true;
+  } else {
+    // The full test (not the projection frames): a query on a corner gets distance 0 exactly,
+    // which needs no BVH query at all.
+    const int t = c.triangle;
+    const TrianglePoint tp = closest_point_on_triangle(
+        p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(), V.row(F(t, 2)).transpose());
+    c.bary = tp.bary;
+    c.point = tp.point;
+    c.dist2 = tp.dist2;
+  }
+  return c.dist2 == 0.0;  // nothing is strictly closer
+}
+
+}  // namespace
 
 int update_correspondences(const SurfaceView& surface, const Positions& points, bool exact,
                            int max_steps, std::vector<SurfacePoint>& corr,
@@ -51,28 +81,8 @@ int update_correspondences(const SurfaceView& surface, const Positions& points, 
               if (u >= 0) ahead->prefetch(u);
         }
       }
-      const Vec3 p = points.row(i).transpose();
-      SurfacePoint& c = corr[i];
-      if (c.triangle >= 0) {
-        if (!exact) {
-          if (walk_closest(V, F, *surface.topology, p, c.triangle, max_steps, c, surface.planes))
-            continue;
-        } else {
-          // The full test (not the projection frames): a query on a corner gets distance 0
-          // exactly, which needs no BVH query at all.
-          const int t = c.triangle;
-          const TrianglePoint tp =
-              closest_point_on_triangle(p, V.row(F(t, 0)).transpose(), V.row(F(t, 1)).transpose(),
-                                        V.row(F(t, 2)).transpose());
-          c.bary = tp.bary;
-          c.point = tp.point;
-          c.dist2 = tp.dist2;
-        }
-        if (c.dist2 == 0.0) continue;  // nothing is strictly closer
-      } else {
-        c = SurfacePoint{};
-      }
-      pending[i] = 1;
+      if (!local_answer(surface, points.row(i).transpose(), exact, max_steps, corr[i]))
+        pending[i] = 1;
     }
   });
   int exact_count = 0;

@@ -156,6 +156,35 @@ void axpy_columns(const Positions& a, const Col3& k, const Positions& b, Positio
     for (int c = 0; c < 3; ++c) o[3 * i + c] = x[3 * i + c] + k[c] * y[3 * i + c];
 }
 
+// p = r + β (p − ω v), per column.
+void update_direction(const Positions& r, const Positions& v, const Col3& beta, const Col3& omega,
+                      Positions& p) {
+  double* pp = p.data();
+  const double* rr = r.data();
+  const double* vv = v.data();
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    for (int c = 0; c < 3; ++c)
+      pp[3 * i + c] = rr[3 * i + c] + beta[c] * (pp[3 * i + c] - omega[c] * vv[3 * i + c]);
+}
+
+// BiCGSTAB's stabilizing half-step for the columns where `second` is 1: z = M⁻¹ s, t = K z,
+// ω = t·s / t·t, X += ω z, r = s − ω t (r = s where ω is 0). Returns ‖r‖ per column.
+Col3 stabilize(const SparseMatrixR& K, const Ilu0& M, const Col3& second, BicgstabWorkspace& w,
+               Col3& omega, Positions& X) {
+  M.apply(w.s, w.z);
+  multiply(K, w.z, w.t);
+  const Col3 ts = column_dots(w.t, w.s), tt = column_dots(w.t, w.t);
+  Col3 om = Col3::Zero();
+  for (int c = 0; c < 3; ++c) {
+    if (second[c] == 0.0) continue;
+    omega[c] = tt[c] > 0.0 ? ts[c] / tt[c] : 0.0;
+    om[c] = omega[c];
+  }
+  axpy_columns(X, om, w.z, X);       // X += ω z
+  axpy_columns(w.s, -om, w.t, w.r);  // r = s − ω t
+  return column_dots(w.r, w.r).sqrt();
+}
+
 }  // namespace
 
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, Positions& X,
@@ -201,7 +230,7 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
                     const std::array<double, 3>* scale) {
   SolveStats st;
   const int n = static_cast<int>(K.rows());
-  Positions &r = w.r, &rhat = w.rhat, &p = w.p, &v = w.v, &y = w.y, &s = w.s, &z = w.z, &t = w.t;
+  Positions &r = w.r, &rhat = w.rhat, &p = w.p, &v = w.v, &y = w.y, &s = w.s;
   multiply(K, X, r);
   r = R - r;
   rhat = r;
@@ -237,14 +266,7 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
       beta[c] = (rho_new[c] / rho[c]) * (alpha[c] / omega[c]);
     }
     rho = rho_new;
-    {  // p = r + β (p − ω v)
-      double* pp = p.data();
-      const double* rr = r.data();
-      const double* vv = v.data();
-      for (int i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c)
-          pp[3 * i + c] = rr[3 * i + c] + beta[c] * (pp[3 * i + c] - omega[c] * vv[3 * i + c]);
-    }
+    update_direction(r, v, beta, omega, p);
     M.apply(p, y);
     multiply(K, y, v);
     const Col3 rv = column_dots(rhat, v);
@@ -266,18 +288,7 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
         if (!done[c]) res[c] = s_norm[c];
       r.swap(s);
     } else {
-      M.apply(s, z);
-      multiply(K, z, t);
-      const Col3 ts = column_dots(t, s), tt = column_dots(t, t);
-      Col3 om = Col3::Zero();
-      for (int c = 0; c < 3; ++c) {
-        if (second[c] == 0.0) continue;
-        omega[c] = tt[c] > 0.0 ? ts[c] / tt[c] : 0.0;
-        om[c] = omega[c];
-      }
-      axpy_columns(X, om, z, X);   // X += ω z
-      axpy_columns(s, -om, t, r);  // r = s − ω t (= s where ω is 0)
-      const Col3 rn = column_dots(r, r).sqrt();
+      const Col3 rn = stabilize(K, M, second, w, omega, X);
       for (int c = 0; c < 3; ++c)
         if (!done[c]) res[c] = second[c] != 0.0 ? rn[c] : s_norm[c];
     }

@@ -55,23 +55,24 @@ struct MassageOptions {
   /// Laplacian turned ring by ring into the start, so frames with T's shapes are fixed points; see
   /// shape_target.hpp) or "zero" (the paper's eq. 6; the smooth job's default).
   ShapeTargetKind shape_target = ShapeTargetKind::Template;
-  int iterations = 15;                         ///< "iterations": outer iterations, >= 1
-  std::optional<double> mu;                    ///< "mu": "auto" (empty) or a value in [0, 1)
-  SampleKind samples = SampleKind::Vertices;   ///< "samples": samples w_j of N
+  int iterations = 15;                        ///< "iterations": outer iterations, >= 1
+  std::optional<double> mu;                   ///< "mu": "auto" (empty) or a value in [0, 1)
+  SampleKind samples = SampleKind::Vertices;  ///< "samples": samples w_j of N
   /// "tolerance": stop early when no vertex moved more than this times M's mean edge length.
   double tolerance = 1e-4;
   bool lawson = true;          ///< "lawson": update α, β by eq. 5 after each iteration
   double lawson_floor = 1e-8;  ///< "lawson_floor": α, β kept >= this times their mean
-  SolverKind solver = SolverKind::Iterative;   ///< "solver": "iterative" | "direct"
+  SolverKind solver = SolverKind::Iterative;  ///< "solver": "iterative" | "direct"
   double solver_tolerance = 1e-8;             ///< "solver_tolerance": relative residual
-  int solver_max_iterations = 300;             ///< "solver_max_iterations"
+  int solver_max_iterations = 300;            ///< "solver_max_iterations"
   ClosestPointMode closest_points = ClosestPointMode::Local;  ///< "closest_points"
-  int walk_max_steps = 16;     ///< "walk_max_steps": local search moves before the exact query
-  bool pin_boundary = false;   ///< "pin_boundary": boundary vertices of M keep their position
-  std::vector<int> pinned;     ///< "pinned": vertex indices of M that keep their position
+  int walk_max_steps = 16;    ///< "walk_max_steps": local search moves before the exact query
+  bool pin_boundary = false;  ///< "pin_boundary": boundary vertices of M keep their position
+  std::vector<int> pinned;    ///< "pinned": vertex indices of M that keep their position
   DistanceTerm distance_term = DistanceTerm::Point;  ///< "distance_term": "point" | "plane"
-  double tangential_stiffness = 0.2;   ///< "tangential_stiffness": ε of the plane term, (0, 1]
-  double tangential_adapt = 5.0;       ///< "tangential_adapt": ε's rise with the area change
+  double tangential_stiffness = 0.2;  ///< "tangential_stiffness": ε of the plane term, (0, 1]
+  double tangential_adapt = 5.0;      ///< "tangential_adapt": ε's rise with the area change
+  int tangential_smoothing = 12;  ///< "tangential_smoothing": 1-ring passes over the area change
   /// "vertex_weights": a file of per-vertex weights (a text file of numbers, or "file.ply#name",
   /// a scalar vertex property of a PLY file), read by the jobs into `vertex_weights`; the
   /// Massager itself reads only the vector.
@@ -88,10 +89,12 @@ inline constexpr EnumName<SolverKind> kSolverKindNames[] = {{"iterative", Solver
 inline constexpr EnumName<ClosestPointMode> kClosestPointModeNames[] = {
     {"local", ClosestPointMode::Local}, {"exact", ClosestPointMode::Exact}};
 
-template <>
-inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
+namespace massage_fields {
+
+/// The paper's method: the shape term, the outer iterations, the distance term's weights (§2).
+inline Fields<MassageOptions> method() {
   using O = MassageOptions;
-  static const Fields<O> fields = {
+  return {
       field<&O::weights>("weights", choice(kWeightKindNames),
                          "the weights λ of eq. 1 (§2.1), computed once on T: mean value "
                          "coordinates keep T's triangle shapes, uniform weights even the "
@@ -127,6 +130,13 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
       field<&O::lawson_floor>("lawson_floor", open(0, 1),
                               "α, β are normalized by their joint mean and kept at least this "
                               "times it, so B stays definite"),
+  };
+}
+
+/// How each iteration solves and finds its closest points.
+inline Fields<MassageOptions> numerics() {
+  using O = MassageOptions;
+  return {
       field<&O::solver>("solver", choice(kSolverKindNames),
                         "`\"iterative\"`: BiCGSTAB with ILU(0) on the fixed pattern, "
                         "warm-started, sparse LU as fall-back; `\"direct\"`: sparse LU every "
@@ -143,6 +153,13 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
                                 "`\"exact\"`: a BVH query for every point in every iteration"),
       field<&O::walk_max_steps>("walk_max_steps", at_least(0),
                                 "moves of the local walk before the exact query"),
+  };
+}
+
+/// Beyond the paper: pinned vertices, the point-to-plane term, per-vertex weights.
+inline Fields<MassageOptions> extensions() {
+  using O = MassageOptions;
+  return {
       field<&O::pin_boundary>("pin_boundary", any_value(),
                               "boundary vertices of M keep their position exactly"),
       field<&O::pinned>("pinned", indices("vertex indices"),
@@ -163,6 +180,10 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
                                   "|log area ratio| between the template and the start around "
                                   "vertex i, smoothed over a few rings), stiff where the surface "
                                   "stretches, soft where it bends isometrically; 0: ε everywhere"),
+      field<&O::tangential_smoothing>("tangential_smoothing", closed(0, 1000),
+                                      "passes of 1-ring averaging of the log area ratio before "
+                                      "`tangential_adapt` applies: more average out a wider "
+                                      "tangential drift, fewer keep a stretch local"),
       field<&O::vertex_weights_file>(
           "vertex_weights", any_value(),
           "per-vertex weights in [0, 1], one per vertex of M (for glTF input: of the welded "
@@ -172,6 +193,14 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
           "between blend the vertex's shape equation (eq. 6) with \"stay at the input\" "
           "(docs/method-vertex-weights.md)"),
   };
+}
+
+}  // namespace massage_fields
+
+template <>
+inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
+  static const Fields<MassageOptions> fields = concat_fields(
+      {massage_fields::method(), massage_fields::numerics(), massage_fields::extensions()});
   return fields;
 }
 
@@ -179,27 +208,27 @@ inline const Fields<MassageOptions>& fields_of<MassageOptions>() {
 struct IterationStats {
   int iteration = 0;
   double mu = 0.0;
-  double energy = 0.0;           ///< μ‖Av − δ‖² + (1−μ)·(weighted distances, eq. 4), after solve
+  double energy = 0.0;  ///< μ‖Av − δ‖² + (1−μ)·(weighted distances, eq. 4), after solve
   double max_dist_m_to_n = 0.0;  ///< max_i |v_i − v̂_i| (after the solve)
   double rms_dist_m_to_n = 0.0;
   double max_dist_n_to_m = 0.0;  ///< max_j |w_j − ŵ_j|
   double rms_dist_n_to_m = 0.0;
-  double max_move = 0.0;         ///< largest vertex displacement of this iteration
+  double max_move = 0.0;  ///< largest vertex displacement of this iteration
   int solver_iterations = 0;
-  double solver_residual = 0.0;  ///< relative residual reached
-  int exact_queries = 0;         ///< closest-point queries that needed the exact (BVH) search
-  double seconds_closest = 0.0;  ///< closest points both ways, BVH refit
-  double seconds_assemble = 0.0; ///< B, c, K, preconditioner or factorization
+  double solver_residual = 0.0;   ///< relative residual reached
+  int exact_queries = 0;          ///< closest-point queries that needed the exact (BVH) search
+  double seconds_closest = 0.0;   ///< closest points both ways, BVH refit
+  double seconds_assemble = 0.0;  ///< B, c, K, preconditioner or factorization
   double seconds_solve = 0.0;
 };
 
 struct MassageResult {
-  Positions V;                        ///< optimized positions of M (n×3)
+  Positions V;  ///< optimized positions of M (n×3)
   std::vector<IterationStats> iterations;
-  bool ok = true;                     ///< false: numerical failure, see `failure`; V is then the start
-  std::string failure;                ///< why the run failed (solver breakdown, NaN, ...)
-  bool stopped_early = false;         ///< the movement tolerance was met before the last iteration
-  int folded_triangles = 0;           ///< triangles whose normal opposes N's at their centroid
+  bool ok = true;              ///< false: numerical failure, see `failure`; V is then the start
+  std::string failure;         ///< why the run failed (solver breakdown, NaN, ...)
+  bool stopped_early = false;  ///< the movement tolerance was met before the last iteration
+  int folded_triangles = 0;    ///< triangles whose normal opposes N's at their centroid
   /// With shape_target "template": vertices whose normal is undefined in T or in the start (no
   /// area around them), which keep the paper's target δ_i = 0.
   int target_fallback_vertices = 0;

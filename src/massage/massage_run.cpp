@@ -96,7 +96,7 @@ MassageRun::MassageRun(const MassagerState& state, const Positions& start_in,
   if (plane_) {
     normals_n_ = vertex_normals(N);
     epsilon_ = tangential_stiffness(s_.templ, start_, s_.F, *s_.topology, o_.tangential_stiffness,
-                                    o_.tangential_adapt);
+                                    o_.tangential_adapt, o_.tangential_smoothing);
     K_pre_ = K_;
   }
   use_target_ = o_.shape_target == ShapeTargetKind::Template;

@@ -6,8 +6,6 @@
 namespace sm {
 namespace {
 
-constexpr int kSmoothingPasses = 12;  // Jacobi passes of 1-ring averaging of the area change
-
 double triangle_area(const Positions& V, const Triangles& F, int t) {
   const Vec3 a = V.row(F(t, 0)).transpose();
   return 0.5 * (V.row(F(t, 1)).transpose() - a).cross(V.row(F(t, 2)).transpose() - a).norm();
@@ -16,7 +14,8 @@ double triangle_area(const Positions& V, const Triangles& F, int t) {
 }  // namespace
 
 Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, const Triangles& F,
-                                     const Topology& topology, double stiffness, double adapt) {
+                                     const Topology& topology, double stiffness, double adapt,
+                                     int passes) {
   const int n = topology.num_vertices;
   Eigen::VectorXd eps = Eigen::VectorXd::Constant(n, stiffness);
   if (adapt > 0.0) {
@@ -31,7 +30,7 @@ Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, con
       if (vt.size(v) > 0) change[v] /= vt.size(v);
     }
     Eigen::VectorXd next(n);
-    for (int pass = 0; pass < kSmoothingPasses; ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {  // Jacobi passes of 1-ring averaging
       const Csr& ring = topology.one_ring;
       for (int v = 0; v < n; ++v) {
         double sum = change[v];

@@ -18,12 +18,13 @@ namespace sm {
 
 /// ε_i per vertex (n): `stiffness` everywhere, raised where the surface stretches between the
 /// template T and the start S: ε_i = min(1, stiffness + adapt · s_i), s_i the magnitude of the
-/// log area ratio log(area_S / area_T) of the triangles around i, smoothed by 12 passes of 1-ring
-/// averaging first (so that the oscillating area change of a tangential drift averages out and a
-/// real stretch stays). Boundary vertices take 1 (point-to-point: a boundary has no tangent plane to slide in
-/// across it).
+/// log area ratio log(area_S / area_T) of the triangles around i, smoothed by `passes` passes of
+/// 1-ring averaging first (so that the oscillating area change of a tangential drift averages out
+/// and a real stretch stays). Boundary vertices take 1 (point-to-point: a boundary has no tangent
+/// plane to slide in across it).
 Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, const Triangles& F,
-                                     const Topology& topology, double stiffness, double adapt);
+                                     const Topology& topology, double stiffness, double adapt,
+                                     int passes);
 
 /// The plane term's blocks D on the pattern's slots (nnz) and its part of the right-hand side
 /// (rhs −= D-part of the targets), for the current correspondences. Vertex i's term as above;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -173,6 +174,14 @@ using Fields = std::vector<Field<S>>;
 /// The table of S; each options struct's header defines its specialization.
 template <class S>
 const Fields<S>& fields_of();
+
+/// A table from groups of lines, in order (a long table as named parts).
+template <class S>
+Fields<S> concat_fields(std::initializer_list<Fields<S>> groups) {
+  Fields<S> out;
+  for (const Fields<S>& g : groups) out.insert(out.end(), g.begin(), g.end());
+  return out;
+}
 
 /// The lambdas of a std::visit over a ValueRef as one visitor.
 template <class... F>

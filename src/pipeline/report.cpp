@@ -21,25 +21,25 @@ using json = nlohmann::json;
 
 std::vector<std::string> summary_columns(bool ground_truth) {
   std::vector<std::string> columns = {"frame",
-          "file",
-          "vertices",
-          "triangles",
-          "shear_max_before",
-          "shear_mean_before",
-          "shear_p95_before",
-          "shear_max_after",
-          "shear_mean_after",
-          "shear_p95_after",
-          "dist_out_to_in_max",
-          "dist_out_to_in_rms",
-          "dist_in_to_out_max",
-          "dist_in_to_out_rms",
-          "iterations",
-          "seconds",
-          "status",
-          "failure",
-          "time",
-          "folded_triangles"};
+                                      "file",
+                                      "vertices",
+                                      "triangles",
+                                      "shear_max_before",
+                                      "shear_mean_before",
+                                      "shear_p95_before",
+                                      "shear_max_after",
+                                      "shear_mean_after",
+                                      "shear_p95_after",
+                                      "dist_out_to_in_max",
+                                      "dist_out_to_in_rms",
+                                      "dist_in_to_out_max",
+                                      "dist_in_to_out_rms",
+                                      "iterations",
+                                      "seconds",
+                                      "status",
+                                      "failure",
+                                      "time",
+                                      "folded_triangles"};
   if (ground_truth)
     for (const char* part : {"", "tangential_", "normal_"})
       for (const char* what : {"mean_before", "max_before", "mean_after", "max_after"})
@@ -164,16 +164,10 @@ ReportHeader report_header_from_json(const json& r) {
   }
 }
 
-json make_report(const ReportHeader& header, const std::vector<FrameSummary>& frames,
-                 const std::vector<std::string>& warnings, bool interrupted, const json& run) {
-  json r;
-  r["versions"] = header.versions;
-  r["config"] = header.config;
-  r["input"] = header.input;
-  r["template"] = header.templ;
-  r["hashes"] = {{"config", header.config_hash},
-                 {"template", header.templ.value("hash", std::string())}};
+namespace {
 
+// "totals": frame counts, and the shear and distances over the frames.
+json report_totals(const ReportHeader& header, const std::vector<FrameSummary>& frames) {
   int optimized = 0, unchanged = 0, failed = 0, iterations = 0;
   double mean_before = 0, mean_after = 0, p95_before = 0, p95_after = 0;
   double max_before = 0, max_after = 0, out_to_in = 0, in_to_out = 0;
@@ -192,68 +186,89 @@ json make_report(const ReportHeader& header, const std::vector<FrameSummary>& fr
     in_to_out = std::max(in_to_out, f.in_to_out.max);
   }
   const double n = std::max<size_t>(1, frames.size());
-  r["totals"] = {{"frames_listed", header.frames_listed},
-                 {"frames_selected", header.frames_selected},
-                 {"frames_written", frames.size()},
-                 {"optimized", optimized},
-                 {"template_unchanged", unchanged},
-                 {"failed", failed},
-                 {"iterations", iterations},
-                 {"shear_before",
-                  {{"max", json_number(max_before)},
-                   {"mean_of_means", json_number(mean_before / n)},
-                   {"mean_of_p95", json_number(p95_before / n)}}},
-                 {"shear_after",
-                  {{"max", json_number(max_after)},
-                   {"mean_of_means", json_number(mean_after / n)},
-                   {"mean_of_p95", json_number(p95_after / n)}}},
-                 {"dist_out_to_in_max", json_number(out_to_in)},
-                 {"dist_in_to_out_max", json_number(in_to_out)},
-                 {"hausdorff_max", json_number(std::max(out_to_in, in_to_out))}};
-  r["interrupted"] = interrupted;
+  return {{"frames_listed", header.frames_listed},
+          {"frames_selected", header.frames_selected},
+          {"frames_written", frames.size()},
+          {"optimized", optimized},
+          {"template_unchanged", unchanged},
+          {"failed", failed},
+          {"iterations", iterations},
+          {"shear_before",
+           {{"max", json_number(max_before)},
+            {"mean_of_means", json_number(mean_before / n)},
+            {"mean_of_p95", json_number(p95_before / n)}}},
+          {"shear_after",
+           {{"max", json_number(max_after)},
+            {"mean_of_means", json_number(mean_after / n)},
+            {"mean_of_p95", json_number(p95_after / n)}}},
+          {"dist_out_to_in_max", json_number(out_to_in)},
+          {"dist_in_to_out_max", json_number(in_to_out)},
+          {"hausdorff_max", json_number(std::max(out_to_in, in_to_out))}};
+}
 
-  if (!header.ground_truth.empty()) {
-    json list = json::array();
-    double before = 0, after = 0, tangential_before = 0, tangential_after = 0, normal_before = 0,
-           normal_after = 0;
-    for (const FrameSummary& f : frames) {
-      if (!f.ground_truth) continue;
-      const GroundTruthError& g = *f.ground_truth;
-      before += g.mean_before;
-      after += g.mean_after;
-      const CorrespondenceError &b = g.split_before, &a = g.split_after;
-      tangential_before += b.tangential_mean;
-      tangential_after += a.tangential_mean;
-      normal_before += b.normal_mean;
-      normal_after += a.normal_mean;
-      list.push_back({{"frame", f.frame},
-                      {"mean_before", json_number(g.mean_before)},
-                      {"max_before", json_number(g.max_before)},
-                      {"mean_after", json_number(g.mean_after)},
-                      {"max_after", json_number(g.max_after)},
-                      {"tangential_mean_before", json_number(b.tangential_mean)},
-                      {"tangential_max_before", json_number(b.tangential_max)},
-                      {"tangential_mean_after", json_number(a.tangential_mean)},
-                      {"tangential_max_after", json_number(a.tangential_max)},
-                      {"normal_mean_before", json_number(b.normal_mean)},
-                      {"normal_max_before", json_number(b.normal_max)},
-                      {"normal_mean_after", json_number(a.normal_mean)},
-                      {"normal_max_after", json_number(a.normal_max)}});
-    }
-    r["ground_truth"] = {
-        {"folder", header.ground_truth},
-        {"unit", "mean edge length of the template"},
-        {"what", "distance of every vertex to its position on the clean (undrifted) frame; "
-                 "tangential: its part along the clean surface (vertex normal), normal: off it"},
-        {"mean_before", json_number(before / n)},
-        {"mean_after", json_number(after / n)},
-        {"tangential_mean_before", json_number(tangential_before / n)},
-        {"tangential_mean_after", json_number(tangential_after / n)},
-        {"normal_mean_before", json_number(normal_before / n)},
-        {"normal_mean_after", json_number(normal_after / n)},
-        {"frames", list}};
+json ground_truth_frame(int frame, const GroundTruthError& g) {
+  const CorrespondenceError &b = g.split_before, &a = g.split_after;
+  return {{"frame", frame},
+          {"mean_before", json_number(g.mean_before)},
+          {"max_before", json_number(g.max_before)},
+          {"mean_after", json_number(g.mean_after)},
+          {"max_after", json_number(g.max_after)},
+          {"tangential_mean_before", json_number(b.tangential_mean)},
+          {"tangential_max_before", json_number(b.tangential_max)},
+          {"tangential_mean_after", json_number(a.tangential_mean)},
+          {"tangential_max_after", json_number(a.tangential_max)},
+          {"normal_mean_before", json_number(b.normal_mean)},
+          {"normal_max_before", json_number(b.normal_max)},
+          {"normal_mean_after", json_number(a.normal_mean)},
+          {"normal_max_after", json_number(a.normal_max)}};
+}
+
+// "ground_truth": every frame's error against its clean frame and the means (over all frames).
+json ground_truth_section(const std::string& folder, const std::vector<FrameSummary>& frames) {
+  json list = json::array();
+  double before = 0, after = 0, tangential_before = 0, tangential_after = 0, normal_before = 0,
+         normal_after = 0;
+  for (const FrameSummary& f : frames) {
+    if (!f.ground_truth) continue;
+    const GroundTruthError& g = *f.ground_truth;
+    before += g.mean_before;
+    after += g.mean_after;
+    tangential_before += g.split_before.tangential_mean;
+    tangential_after += g.split_after.tangential_mean;
+    normal_before += g.split_before.normal_mean;
+    normal_after += g.split_after.normal_mean;
+    list.push_back(ground_truth_frame(f.frame, g));
   }
+  const double n = std::max<size_t>(1, frames.size());
+  return {{"folder", folder},
+          {"unit", "mean edge length of the template"},
+          {"what",
+           "distance of every vertex to its position on the clean (undrifted) frame; "
+           "tangential: its part along the clean surface (vertex normal), normal: off it"},
+          {"mean_before", json_number(before / n)},
+          {"mean_after", json_number(after / n)},
+          {"tangential_mean_before", json_number(tangential_before / n)},
+          {"tangential_mean_after", json_number(tangential_after / n)},
+          {"normal_mean_before", json_number(normal_before / n)},
+          {"normal_mean_after", json_number(normal_after / n)},
+          {"frames", list}};
+}
 
+}  // namespace
+
+json make_report(const ReportHeader& header, const std::vector<FrameSummary>& frames,
+                 const std::vector<std::string>& warnings, bool interrupted, const json& run) {
+  json r;
+  r["versions"] = header.versions;
+  r["config"] = header.config;
+  r["input"] = header.input;
+  r["template"] = header.templ;
+  r["hashes"] = {{"config", header.config_hash},
+                 {"template", header.templ.value("hash", std::string())}};
+  r["totals"] = report_totals(header, frames);
+  r["interrupted"] = interrupted;
+  if (!header.ground_truth.empty())
+    r["ground_truth"] = ground_truth_section(header.ground_truth, frames);
   json failures = json::array();
   for (const FrameSummary& f : frames)
     if (f.status == FrameStatus::Failed)
