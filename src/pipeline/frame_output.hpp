@@ -21,6 +21,8 @@
 ///      OutputContext and two static members: `static bool enabled(const SequenceJobOptions&)`
 ///      (the config asks for it) and `static const char* help()` (its lines of `--help`);
 ///   2. one line in the registry (frame_outputs.cpp): `output<MyOutput>(),`.
+/// An output of one CSV per frame in a folder of its own derives from FrameCsvOutput
+/// (output_frame_csv.hpp) and writes only its table.
 /// Its options go in OutputOptions (sequence_options.hpp) with their field-table lines.
 #include <filesystem>
 #include <functional>

@@ -3,31 +3,22 @@
 /// and after.
 #include <Eigen/Core>
 
-#include "pipeline/frame_output.hpp"
+#include "pipeline/output_frame_csv.hpp"
 
 namespace sm {
 
 /// distortion/<frame>.csv: `triangle,shear_before,shear_after`, one row per triangle (0-based).
 std::string format_distortion_csv(const Eigen::VectorXd& before, const Eigen::VectorXd& after);
 
-class DistortionCsvOutput : public FrameOutput {
+class DistortionCsvOutput : public FrameCsvOutput {
  public:
-  explicit DistortionCsvOutput(const OutputContext& context);
+  explicit DistortionCsvOutput(const OutputContext& context)
+      : FrameCsvOutput(context, "distortion") {}
   static bool enabled(const SequenceJobOptions& config);
   static const char* help();
 
-  std::vector<std::filesystem::path> files(const std::vector<int>& frames) const override;
-  std::vector<std::filesystem::path> folders() const override;
-  std::string describe(const std::vector<int>& frames) const override;
-  nlohmann::json report() const override;
-  ResultNames results() const override;
-  OutputFrame encode(const FrameOutcome& frame) const override;
-
- private:
-  std::filesystem::path file(int index) const;  // relative to output.dir
-
-  std::filesystem::path dir_;
-  std::shared_ptr<const FrameSource> source_;
+ protected:
+  std::string table(const FrameOutcome& frame) const override;
 };
 
 }  // namespace sm

@@ -52,6 +52,20 @@ MassageOptions template_target() {
   return o;
 }
 
+// The massage of a fold case's input against the template's shapes, and the triangles it folds.
+struct Massaged {
+  Massager massager;
+  Reference reference;
+  MassageResult first;
+  std::vector<int> folded;
+  Massaged(const FoldCase& c, const MassageOptions& o)
+      : massager(c.templ, o),
+        reference(c.input, o.samples, "input", massager.shared_topology()),
+        first(massager.run(c.input.V, reference)) {
+    if (first.ok) count_folded_triangles(c.templ.F, c.topology, c.input.V, first.V, &folded);
+  }
+};
+
 }  // namespace
 
 TEST_CASE("ring distances and repair weights ramp from the folds") {
@@ -76,13 +90,12 @@ TEST_CASE("ring distances and repair weights ramp from the folds") {
 TEST_CASE("the repair removes a fold the massage makes and keeps the result elsewhere") {
   const FoldCase c = fold_case({vertex_at(8, 8)}, 1.6);
   const MassageOptions o = template_target();
-  const Massager massager(c.templ, o);
-  const Reference reference(c.input, o.samples, "input", massager.shared_topology());
-  const MassageResult first = massager.run(c.input.V, reference);
+  const Massaged m(c, o);
+  const MassageResult& first = m.first;
+  const Reference& reference = m.reference;
+  const std::vector<int>& folded = m.folded;
   REQUIRE(first.ok);
-  std::vector<int> folded;
-  const int before = count_folded_triangles(c.templ.F, c.topology, c.input.V, first.V, &folded)
-                         .folded;
+  const int before = static_cast<int>(folded.size());
   INFO("folded before the repair: " << before);
   REQUIRE(before > 0);
 
@@ -123,13 +136,12 @@ TEST_CASE("with 0 rings the repair keeps just the folds' corners at the input") 
     for (int x = 4; x <= 12; x += 2) pushed.push_back(vertex_at(x, y));
   const FoldCase c = fold_case(pushed, 5.0);
   const MassageOptions o = template_target();
-  const Massager massager(c.templ, o);
-  const Reference reference(c.input, o.samples, "input", massager.shared_topology());
-  const MassageResult first = massager.run(c.input.V, reference);
+  const Massaged m(c, o);
+  const MassageResult& first = m.first;
+  const Reference& reference = m.reference;
+  const std::vector<int>& folded = m.folded;
   REQUIRE(first.ok);
-  std::vector<int> folded;
-  const int before = count_folded_triangles(c.templ.F, c.topology, c.input.V, first.V, &folded)
-                         .folded;
+  const int before = static_cast<int>(folded.size());
   INFO("folded before the repair: " << before);
   REQUIRE(before > 50);
   std::vector<unsigned char> corner(size_t(c.input.num_vertices()), 0);
