@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Figures of the code's structure: the largest source files in src/, the longest functions,
-and the include cycles among headers (a header that includes, directly or not, one that
-includes it back).
+the include cycles among headers (a header that includes, directly or not, one that
+includes it back), and the lines of code of the config mapping (the JSON reading and writing
+of the options' tables, and the config's key-specific rules: MAPPING below).
 
   /usr/bin/python3 tools/code_figures.py [--top N] [--module pipeline]
 
@@ -127,6 +128,19 @@ def functions(path):
     return found
 
 
+# The config mapping: the generic reader/writer of the field tables and the config's own rules.
+# Not counted: the tables (beside each options struct), the strict JSON parser (io/config.*),
+# the words of messages (mesh/spelling.*) and the reference generator (config/reference.*).
+MAPPING = ["src/io/options_json.hpp", "src/io/options_json.cpp",
+           "src/config/config.hpp", "src/config/config.cpp"]
+
+
+def code_lines(path):
+    """Lines that hold code: neither blank nor only a comment."""
+    return sum(1 for line in strip(open(os.path.join(ROOT, path)).read()).split("\n")
+               if line.strip())
+
+
 def include_graph():
     graph = {}
     for path in sources():
@@ -163,6 +177,9 @@ def main():
     print("longest functions in src/ (lines, signature to closing brace):")
     for n, f, line, name in fns[: a.top]:
         print(f"  {n:5d}  {f}:{line}  {name}")
+    counts = [(code_lines(f), f) for f in MAPPING]
+    print(f"config mapping: {sum(n for n, _ in counts)} lines of code ("
+          + ", ".join(f"{os.path.basename(f)} {n}" for n, f in counts) + ")")
     graph = include_graph()
     cycles = []
     for h in sorted(graph):

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "mesh/spelling.hpp"
+
 namespace sm::cli {
 
 namespace {
@@ -50,6 +52,16 @@ std::string missing_value(const CLI::App& app, const std::string& what) {
   return name + " needs a value" + (type.empty() ? "" : " " + type);
 }
 
+// "unknown option '--thread' (did you mean "--threads"?)", the suggestion among `app`'s long
+// options, as the config suggests among its keys.
+std::string unknown_option(const CLI::App& app, const std::string& extra) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : app.get_options())
+    for (const std::string& l : option->get_lnames()) names.push_back("--" + l);
+  const std::string given = extra.substr(0, extra.find('='));
+  return "unknown option '" + extra + "'" + (given.size() > 2 ? did_you_mean(given, names) : "");
+}
+
 }  // namespace
 
 void set_conventions(CLI::App& app, size_t column) {
@@ -79,7 +91,7 @@ void parse(CLI::App& app, int argc, const char* const* argv) {
     if (extra == "--") continue;  // the end of the options, kept by CLI11 among the extras
     const bool option = extra.size() > 1 && extra[0] == '-';
     throw UsageError{app.get_name(),
-                     (option ? "unknown option '" : "unexpected argument '") + extra + "'"};
+                     option ? unknown_option(app, extra) : "unexpected argument '" + extra + "'"};
   }
 }
 
@@ -137,9 +149,7 @@ CLI::Validator number_in(double low, double high, const std::string& range) {
 }
 
 CLI::Validator one_of(std::vector<std::string> words) {
-  std::string expected;
-  for (size_t i = 0; i < words.size(); ++i)
-    expected += (i == 0 ? "\"" : i + 1 < words.size() ? ", \"" : " or \"") + words[i] + "\"";
+  const std::string expected = quoted_list(words);
   return CLI::Validator(
       [=](std::string& value) -> std::string {
         for (const std::string& word : words)

@@ -7,43 +7,13 @@
 
 #include "mesh/errors.hpp"
 #include "mesh/frame_selection.hpp"
+#include "mesh/spelling.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-
-std::string quoted_list(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) {
-    if (i > 0) out += i + 1 == names.size() ? (names.size() > 2 ? ", or " : " or ") : ", ";
-    out += "\"" + names[i] + "\"";
-  }
-  return out;
-}
-
-std::string lowercase(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
-}
-
-// " (did you mean "x"?)" for the candidate nearest to `word`, if near enough to be a typo.
-std::string did_you_mean(std::string_view word, const std::vector<std::string>& options) {
-  const std::string* best = nullptr;
-  int best_distance = INT_MAX;
-  for (const std::string& option : options) {
-    const int d = edit_distance(lowercase(word), lowercase(option));
-    if (d < best_distance) {
-      best_distance = d;
-      best = &option;
-    }
-  }
-  const int limit = word.size() <= 3 ? 1 : word.size() <= 8 ? 2 : 3;
-  return best && best_distance <= limit ? " (did you mean \"" + *best + "\"?)" : "";
-}
 
 std::optional<int64_t> as_integer(const json& v) {
   if (v.is_number_integer() && !v.is_number_unsigned()) return v.get<int64_t>();
@@ -67,6 +37,15 @@ int read_integer(const json& v, const std::string& path, const ValueSpec& spec,
   if (!i || *i < lo || *i > std::min<double>(hi, INT_MAX))
     fail_at(path, "expected " + describe_integers(lo, hi) + ", got " + describe(v));
   return static_cast<int>(*i);
+}
+
+// The items of the array `v`, each an integer of `spec`.
+std::vector<int> read_integers(const json& v, const std::string& path, const ValueSpec& spec,
+                               const Entries& siblings) {
+  std::vector<int> out;
+  for (size_t i = 0; i < v.size(); ++i)
+    out.push_back(read_integer(v[i], path + "[" + std::to_string(i) + "]", spec, siblings));
+  return out;
 }
 
 double read_number(const json& v, const std::string& path, const ValueSpec& spec) {
@@ -130,8 +109,7 @@ FrameSelection read_frames(const json& v, const std::string& path) {
   }
   if (!v.is_array()) fail_at(path, expected + describe(v));
   FrameSelection s = FrameSelection::none();
-  for (size_t i = 0; i < v.size(); ++i)
-    s.list.push_back(read_integer(v[i], path + "[" + std::to_string(i) + "]", at_least(0), {}));
+  s.list = read_integers(v, path, at_least(0), {});
   std::sort(s.list.begin(), s.list.end());
   s.list.erase(std::unique(s.list.begin(), s.list.end()), s.list.end());
   return s;
@@ -226,10 +204,7 @@ void read_value(const json& v, const std::string& path, const Entry& e, const En
                    if (!v.is_array())
                      fail_at(path, "expected an array of " + std::string(spec.items) + ", got " +
                                        describe(v));
-                   out->clear();
-                   for (size_t i = 0; i < v.size(); ++i)
-                     out->push_back(
-                         read_integer(v[i], path + "[" + std::to_string(i) + "]", spec, siblings));
+                   *out = read_integers(v, path, spec, siblings);
                  },
                  [&](std::vector<double>* out) { *out = read_bin_edges(v, path); },
                  [&](FrameSelection* out) { *out = read_frames(v, path); },
@@ -265,45 +240,42 @@ void read_object(const json& value, const std::string& path, const Entries& entr
 
 std::optional<json> write_value(const Entry& e) {
   const ValueSpec& spec = e.info->spec;
-  return std::visit(
+  const json left_out(json::value_t::discarded);
+  const json v = std::visit(
       Overloaded{
-          [](const std::optional<int>* v) -> std::optional<json> {
-            return *v ? json(**v) : json();
-          },
-          [&](const std::optional<double>* v) -> std::optional<json> {
+          [](const std::optional<int>* v) { return *v ? json(**v) : json(); },
+          [&](const std::optional<double>* v) {
             return *v ? json(**v) : spec.auto_word ? json("auto") : json();
           },
-          [](const fs::path* v) -> std::optional<json> {
-            return v->empty() ? std::nullopt : std::optional<json>(v->string());
-          },
-          [](const std::vector<double>* v) -> std::optional<json> {
+          [&](const fs::path* v) { return v->empty() ? left_out : json(v->string()); },
+          [](const std::vector<double>* v) {
             json bins = json::array();
             for (double x : *v) bins.push_back(std::isfinite(x) ? json(x) : json("inf"));
             return bins;
           },
-          [](const FrameSelection* s) -> std::optional<json> {
+          [](const FrameSelection* s) {
             if (s->kind == FrameSelection::Kind::All) return json("all");
             if (s->kind == FrameSelection::Kind::List) return json(s->list);
             return json(format_frame_range(FrameRange{s->start, s->stop, s->step}));
           },
-          [&](const ChoiceRef& c) -> std::optional<json> {
+          [&](const ChoiceRef& c) {
             for (const auto& [name, value] : spec.names)
               if (value == c.get(c.value)) return json(std::string(name));
             return json();
           },
-          [](const SelectorRef& s) -> std::optional<json> {
-            if (*s.index) return json(**s.index);
-            return s.name->empty() ? json() : json(*s.name);
+          [](const SelectorRef& s) {
+            return *s.index ? json(**s.index) : s.name->empty() ? json() : json(*s.name);
           },
-          [](const ObjectRef& o) -> std::optional<json> {
+          [&](const ObjectRef& o) {
             if (!o.present(o.target))
-              return o.mode == ObjectRef::Mode::Toggle ? std::optional<json>(false) : std::nullopt;
+              return o.mode == ObjectRef::Mode::Toggle ? json(false) : left_out;
             json object = write_object(o.entries(o.target));
-            return object.empty() ? std::nullopt : std::optional<json>(std::move(object));
+            return object.empty() ? left_out : object;
           },
-          [](const auto* v) -> std::optional<json> { return json(*v); },  // bool, int, double, ints
+          [](const auto* v) { return json(*v); },  // bool, int, double, a list of integers
       },
       e.value);
+  return v.is_discarded() ? std::nullopt : std::optional<json>(v);
 }
 
 json write_object(const Entries& entries) {
@@ -318,23 +290,6 @@ json write_object(const Entries& entries) {
     }
   }
   return out;
-}
-
-int edit_distance(std::string_view a, std::string_view b) {
-  // Optimal string alignment: insertions, deletions, substitutions and adjacent transpositions.
-  const size_t w = b.size() + 1;
-  std::vector<int> d((a.size() + 1) * w);
-  for (size_t i = 0; i <= a.size(); ++i) d[i * w] = static_cast<int>(i);
-  for (size_t j = 0; j <= b.size(); ++j) d[j] = static_cast<int>(j);
-  for (size_t i = 1; i <= a.size(); ++i)
-    for (size_t j = 1; j <= b.size(); ++j) {
-      int best = std::min({d[(i - 1) * w + j] + 1, d[i * w + j - 1] + 1,
-                           d[(i - 1) * w + j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        best = std::min(best, d[(i - 2) * w + j - 2] + 1);
-      d[i * w + j] = best;
-    }
-  return d[a.size() * w + b.size()];
 }
 
 }  // namespace sm

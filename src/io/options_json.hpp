@@ -62,7 +62,4 @@ std::vector<std::string> keys_of(const Entries& entries);
 /// `path` + "." + `key` ("key" for the top level).
 std::string join_path(const std::string& path, std::string_view key);
 
-/// Levenshtein distance between two strings (for "did you mean" suggestions).
-int edit_distance(std::string_view a, std::string_view b);
-
 }  // namespace sm

@@ -88,6 +88,9 @@ TEST_CASE("words, lists, unknown options, missing values and stray arguments") {
   CHECK(Program().error({"--bogus"}) == "unknown option '--bogus'");
   CHECK(Program().error({"--bogus=3"}) == "unknown option '--bogus=3'");
   CHECK(Program().error({"-x"}) == "unknown option '-x'");
+  CHECK(Program().error({"--quite"}) == "unknown option '--quite' (did you mean \"--quiet\"?)");
+  CHECK(Program().error({"--cont=3"}) ==
+        "unknown option '--cont=3' (did you mean \"--count\"?)");
   CHECK(Program().error({"--count"}) == "--count needs a value N");
   CHECK(Program().error({"stray"}) == "unexpected argument 'stray'");
 }

@@ -388,14 +388,6 @@ TEST_CASE("frame ranges A:B[:STEP]") {
   CHECK_THROWS_AS(parse_frame_range("-1:2", "--frames"), ConfigError);
 }
 
-TEST_CASE("edit distance") {
-  CHECK(edit_distance("iterations", "iteratons") == 1);
-  CHECK(edit_distance("", "abc") == 3);
-  CHECK(edit_distance("kitten", "sitting") == 3);
-  CHECK(edit_distance("same", "same") == 0);
-  CHECK(edit_distance("strat", "start") == 1);  // a transposition counts once
-}
-
 TEST_CASE("every example config in configs/ parses") {
   const fs::path configs = fs::path(SEQMASSAGE_TEST_DIR).parent_path() / "configs";
   int parsed = 0;
