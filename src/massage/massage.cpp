@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -22,15 +23,19 @@ void check_options(const MassageOptions& o, int n) {
     if (v < 0 || v >= n)
       bad("pinned", "vertex " + std::to_string(v) + " is out of range (the mesh has " +
                         std::to_string(n) + " vertices)");
+  // The one check of weights given as numbers (C++, Python), in the config's words; a weights
+  // file is checked as it is read, by line (io/vertex_weights.hpp).
   if (!o.vertex_weights.empty() && static_cast<int>(o.vertex_weights.size()) != n)
-    bad("vertex_weights", std::to_string(o.vertex_weights.size()) +
-                              " weights, but the template has " + std::to_string(n) + " vertices");
+    bad("vertex_weights", "expected " + std::to_string(n) +
+                              " weights (one per template vertex), got " +
+                              std::to_string(o.vertex_weights.size()));
   for (size_t i = 0; i < o.vertex_weights.size(); ++i) {
     const double w = o.vertex_weights[i];
     if (!(w >= 0.0 && w <= 1.0)) {  // also NaN
-      std::ostringstream msg;
-      msg << "the weight of vertex " << i << " is " << w << ", not a number in [0, 1]";
-      bad("vertex_weights", msg.str());
+      char text[32];
+      *std::to_chars(text, text + sizeof text - 1, w).ptr = '\0';  // shortest: "1.5", "nan"
+      bad("vertex_weights[" + std::to_string(i) + "]",
+          "expected " + describe_numbers(closed(0, 1)) + ", got " + text);
     }
   }
 }

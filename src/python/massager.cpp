@@ -80,23 +80,6 @@ bool weights_as_numbers(const py::handle& value) {
          !py::hasattr(value, "__fspath__");
 }
 
-// massage.vertex_weights as numbers: one per template vertex, each in [0, 1], with the config
-// reader's messages ("massage.vertex_weights[16]: expected a number in [0, 1], got 1.5").
-std::vector<double> weights_from_numbers(const py::handle& value, Eigen::Index vertices) {
-  const std::string path = "massage.vertex_weights";
-  std::vector<double> w = to_numbers(value, path);
-  if (static_cast<Eigen::Index>(w.size()) != vertices)
-    fail_at(path, "expected " + std::to_string(vertices) +
-                      " weights (one per vertex of template_vertices), got " +
-                      std::to_string(w.size()));
-  for (size_t i = 0; i < w.size(); ++i)
-    if (!(w[i] >= 0.0 && w[i] <= 1.0))  // also NaN
-      fail_at(path + "[" + std::to_string(i) + "]",
-              "expected " + describe_numbers(closed(0, 1)) + ", got " +
-                  py::repr(py::float_(w[i])).cast<std::string>());
-  return w;
-}
-
 class PyMassager {
  public:
   PyMassager(const DoubleArray& template_vertices, const py::handle& triangles,
@@ -111,10 +94,11 @@ class PyMassager {
     read_options(to_json(keys, "massage"), options, fs::current_path(), "massage");
     TriMesh templ{to_positions(template_vertices, "template_vertices"),
                   to_triangles(triangles, "triangles")};
-    // The weights as the jobs take them: numbers directly, a file (relative to the working
-    // directory) read as the config's.
+    // The weights as the jobs take them: numbers directly (the Massager checks their count and
+    // range, in the config's words), a file (relative to the working directory) read as the
+    // config's.
     if (!numbers.is_none())
-      options.vertex_weights = weights_from_numbers(numbers, templ.V.rows());
+      options.vertex_weights = to_numbers(numbers, "massage.vertex_weights");
     else if (!options.vertex_weights_file.empty())
       options.vertex_weights = read_vertex_weights(
           options.vertex_weights_file, static_cast<int>(templ.V.rows()), "template_vertices");
@@ -157,8 +141,8 @@ class PyMassager {
       py::gil_scoped_release unlocked;
       if (other) {
         // As the single-mesh jobs build theirs; with the template's triangles, as a frame's.
-        const bool same = other->F.rows() == engine.triangles().rows() &&
-                          other->F == engine.triangles();
+        const bool same =
+            other->F.rows() == engine.triangles().rows() && other->F == engine.triangles();
         const Reference ref(std::move(*other), samples, "reference",
                             same ? engine.shared_topology() : nullptr,
                             same ? &engine.template_bvh() : nullptr);

@@ -80,12 +80,14 @@ TEST_CASE("vertex weights are validated: count and range", "[massage][weights]")
   MassageOptions o;
   o.vertex_weights.assign(size_t(n - 1), 1.0);
   CHECK(test::error_of([&] { Massager(s.templ, o); }) ==
-        "massage.vertex_weights: " + std::to_string(n - 1) + " weights, but the template has " +
-            std::to_string(n) + " vertices");
+        "massage.vertex_weights: expected " + std::to_string(n) +
+            " weights (one per template vertex), got " + std::to_string(n - 1));
   o.vertex_weights.assign(size_t(n), 0.5);
   o.vertex_weights[3] = 1.5;
   CHECK(test::error_of([&] { Massager(s.templ, o); }) ==
-        "massage.vertex_weights: the weight of vertex 3 is 1.5, not a number in [0, 1]");
+        "massage.vertex_weights[3]: expected a number in [0, 1], got 1.5");
   o.vertex_weights[3] = std::nan("");
   CHECK_THROWS_AS(Massager(s.templ, o), ConfigError);
+  CHECK(test::error_of([&] { Massager(s.templ, o); }) ==
+        "massage.vertex_weights[3]: expected a number in [0, 1], got nan");
 }

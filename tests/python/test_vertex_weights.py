@@ -58,8 +58,8 @@ def test_lists_dtypes_and_files_give_the_same_run(tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("weights, message", [
-    (np.ones(5), r"^massage\.vertex_weights: expected 144 weights \(one per vertex of "
-                 r"template_vertices\), got 5$"),
+    (np.ones(5), r"^massage\.vertex_weights: expected 144 weights \(one per template vertex\), "
+                 r"got 5$"),
     (np.r_[np.ones(16), 1.5, np.ones(127)],
      r"^massage\.vertex_weights\[16\]: expected a number in \[0, 1\], got 1\.5$"),
     (np.r_[-0.25, np.ones(143)], r"^massage\.vertex_weights\[0\]: expected a number in \[0, 1\], "
