@@ -179,9 +179,9 @@ FrameSummary frame_summary_from_json(const json& j) {
   s.folded_triangles = get<int>(j, "folded_triangles", w);
   if (const json& g = at(j, "ground_truth", w); !g.is_null()) {
     const std::string where = w + ".ground_truth";
-    s.ground_truth =
-        GroundTruthError{get_double(g, "mean_before", where), get_double(g, "max_before", where),
-                         get_double(g, "mean_after", where), get_double(g, "max_after", where)};
+    s.ground_truth = GroundTruthError{
+        get_double(g, "mean_before", where), get_double(g, "max_before", where),
+        get_double(g, "mean_after", where), get_double(g, "max_after", where), {}, {}};
     // (Records written before the split have none: they keep zeros.)
     if (g.contains("split_before"))
       s.ground_truth->split_before = split_from_json(g["split_before"], where + ".split_before");

@@ -32,7 +32,7 @@ FrameSummary example() {
   s.status = FrameStatus::Failed;
   s.failure = "folded triangles: 3 ...";
   s.folded_triangles = 3;
-  s.ground_truth = GroundTruthError{0.1, 0.2, 0.3, 0.4};
+  s.ground_truth = GroundTruthError{0.1, 0.2, 0.3, 0.4, {}, {}};
   s.warnings = {"one", "two"};
   return s;
 }
