@@ -1,10 +1,12 @@
 // The configuration reference and the example configs against the options tables: the committed
 // docs/configuration.md is what `seqmassage config --reference` prints, and the *_all_keys.json
-// configs spell out every key their job resolves.
+// configs spell out every key their job resolves; and the test files the docs point to exist.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <functional>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -106,4 +108,23 @@ TEST_CASE("configs/*_all_keys.json spell out every key their job resolves") {
       CHECK(find(written, path));
     }
   }
+}
+
+TEST_CASE("every test file the docs name exists") {
+  // A test moved with its module (io/ -> config/) left the docs pointing at nothing.
+  std::vector<fs::path> pages{kRoot / "README.md"};
+  for (const auto& entry : fs::directory_iterator(kRoot / "docs"))
+    if (entry.path().extension() == ".md") pages.push_back(entry.path());
+  const std::regex named(R"(\b([a-z]+/test_[a-z0-9_]+\.(cpp|py|sh))\b)");
+  std::set<std::string> missing;
+  int found = 0;
+  for (const fs::path& page : pages) {
+    const std::string text = read_file(page);
+    for (auto m = std::sregex_iterator(text.begin(), text.end(), named);
+         m != std::sregex_iterator(); ++m, ++found)
+      if (!fs::exists(kRoot / "tests" / (*m)[1].str()))
+        missing.insert(page.filename().string() + ": " + (*m)[1].str());
+  }
+  CHECK(found > 20);
+  for (const std::string& m : missing) FAIL_CHECK(m << " does not exist under tests/");
 }
