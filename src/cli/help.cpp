@@ -9,13 +9,14 @@ namespace sm::cli {
 const char* const kHelp = R"(Usage: seqmassage [options] CONFIG.json
        seqmassage measure [options] MESH REFERENCE   (see seqmassage measure --help)
        seqmassage merge [options] OUTPUT_DIR         (see seqmassage merge --help)
-       seqmassage config --reference
+       seqmassage config --reference | --complete FILE
 
 Commands:
   (none)   run the job of CONFIG.json
   measure  print the paper's measures of a mesh against a reference mesh
   merge    combine the shards of a sequence job (--shard I/N) into the outputs of one run
-  config   --reference: print every config key, its type, default and meaning (Markdown)
+  config   --reference: print every config key, its type, default and meaning (Markdown);
+           --complete FILE: print FILE with every key its job resolves (defaults added)
 
 Runs the job of a JSON config file (see README.md; paths in it are relative to the file's folder),
 by its "job" key:

@@ -19,6 +19,7 @@
 #include "cli/help.hpp"
 #include "cli/signals.hpp"
 #include "config/config.hpp"
+#include "config/complete.hpp"
 #include "config/reference.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/measure_files.hpp"
@@ -382,16 +383,22 @@ int main(int argc, char** argv) {
   sm::cli::ignore_broken_pipes();
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "merge") return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
-  if (command == "config")
+  if (command == "config") {
+    const std::string what = argc > 2 ? argv[2] : "";
     return guarded(
         [&] {
-          if (argc != 3 || std::string(argv[2]) != "--reference")
+          if (what == "--reference" && argc == 3)
+            std::cout << sm::config_reference();
+          else if (what == "--complete" && argc == 4)
+            std::cout << sm::complete_config_file(argv[3]);
+          else
             throw UsageError{"seqmassage",
-                             "config takes --reference (the configuration reference)"};
-          std::cout << sm::config_reference();
+                             "config takes --reference (the configuration reference) or "
+                             "--complete FILE (FILE with every key spelled out)"};
           return int(kOk);
         },
-        "");
+        what == "--complete" && argc == 4 ? argv[3] : "");
+  }
   if (command == "measure")
     return guarded(
         [&] {

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "io/atomic_file.hpp"
 #include "pipeline/synthetic.hpp"
 #include "support/cli_process.hpp"
@@ -214,6 +216,33 @@ TEST_CASE("usage errors exit with code 2") {
   CHECK(r.code == 2);
   CHECK_THAT(r.err, Catch::StartsWith("seqmassage: config file 'nowhere.json' does not exist"));
   CHECK_FALSE(fs::exists(f.dir / "out"));
+}
+
+TEST_CASE("config --complete prints the config with every key; bad use exits with code 2") {
+  Fixture f("cli_config_complete");
+  const std::string before = read_file(f.dir / "job.json");
+  test::CliRun r = test::run_cli(f.dir.path(), "config --complete job.json");
+  CHECK(r.code == 0);
+  CHECK(r.err == "");
+  const nlohmann::json completed = nlohmann::json::parse(r.out);
+  CHECK(completed["input"]["frames"] == "in");  // as written, not made absolute
+  CHECK(completed["massage"]["iterations"] == 8);
+  CHECK(completed["massage"]["mu"] == "auto");
+  CHECK(completed["checks"]["repair_folds"] == true);
+  CHECK(read_file(f.dir / "job.json") == before);  // printed, never written over
+  write_text(f.dir / "bad.json", R"({"job": "sequence", "input": {"frames": "in"},
+    "output": {"dir": "out"}, "massage": {"iteratons": 8}})");
+  r = test::run_cli(f.dir.path(), "config --complete bad.json");
+  CHECK(r.code == 2);
+  CHECK(r.out == "");
+  CHECK(r.err ==
+        "seqmassage: bad.json: massage.iteratons: unknown key (did you mean \"iterations\"?)\n");
+  for (const char* args : {"config", "config --complete", "config --bogus", "config --reference x"}) {
+    INFO(args);
+    r = test::run_cli(f.dir.path(), args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("seqmassage: config takes --reference"));
+  }
 }
 
 TEST_CASE("mismatched frames exit with code 3 and write nothing") {

@@ -1,6 +1,7 @@
 // The configuration reference and the example configs against the options tables: the committed
 // docs/configuration.md is what `seqmassage config --reference` prints, and the *_all_keys.json
-// configs spell out every key their job resolves; and the test files the docs point to exist.
+// configs are what `seqmassage config --complete` writes of them (every key their job resolves);
+// and the test files the docs point to exist.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "config/complete.hpp"
 #include "config/config.hpp"
 #include "config/reference.hpp"
 #include "io/atomic_file.hpp"
@@ -76,7 +78,7 @@ TEST_CASE("the reference lists every key of every job, by its JSON path") {
   CHECK(keys > 100);
 }
 
-TEST_CASE("configs/*_all_keys.json spell out every key their job resolves") {
+TEST_CASE("config --complete spells out every key, keeping what the file gives as written") {
   // Every leaf path of `resolved` (objects descended into; arrays and values are leaves).
   const std::function<void(const json&, const std::string&, std::vector<std::string>&)> leaves =
       [&](const json& v, const std::string& path, std::vector<std::string>& out) {
@@ -87,26 +89,42 @@ TEST_CASE("configs/*_all_keys.json spell out every key their job resolves") {
         for (const auto& item : v.items())
           leaves(item.value(), path.empty() ? item.key() : path + "." + item.key(), out);
       };
-  const auto find = [](const json& doc, const std::string& path) {
-    const json* v = &doc;
-    for (size_t begin = 0; v && begin <= path.size();) {
-      const size_t dot = std::min(path.find('.', begin), path.size());
-      const std::string part = path.substr(begin, dot - begin);
-      v = v->is_object() && v->contains(part) ? &(*v)[part] : nullptr;
-      begin = dot + 1;
-    }
-    return v != nullptr;
-  };
+  const std::string given = R"({"job": "sequence", "output": {"dir": "out", "colored": true},
+    "input": {"frames": "in"}, "massage": {"mu": 0.25}})";
+  const nlohmann::ordered_json completed = complete_config(given, "/data/project");
+  // The given keys first, in the file's order, and as written.
+  std::vector<std::string> top;
+  for (const auto& item : completed.items()) top.push_back(item.key());
+  REQUIRE(top.size() > 4);
+  CHECK(std::vector<std::string>(top.begin(), top.begin() + 4) ==
+        std::vector<std::string>{"job", "output", "input", "massage"});
+  CHECK(completed["input"]["frames"] == "in");
+  CHECK(completed["output"]["colored"] == true);
+  CHECK(completed["massage"].begin().key() == "mu");
+  CHECK(completed["massage"]["mu"] == 0.25);
+  // Every key the job resolves is there, at its default where the file left it out.
+  const json resolved = to_json(parse_config(json::parse(given), "/data/project"));
+  std::vector<std::string> paths;
+  leaves(resolved, "", paths);
+  CHECK(paths.size() > 40);
+  const json as_json = completed;
+  for (const std::string& path : paths) {
+    INFO(path);
+    if (path.rfind("output.colored", 0) == 0) continue;  // given as true
+    const std::string pointer = "/" + std::regex_replace(path, std::regex("\\."), "/");
+    CHECK(as_json.contains(json::json_pointer(pointer)));
+  }
+  CHECK(as_json["massage"]["iterations"] == resolved["massage"]["iterations"]);
+  CHECK_THROWS_WITH(complete_config(R"({"job": "smooth", "input": {"mesh": 3}})", "/"),
+                    "input.mesh: expected a path (a non-empty string), got 3");
+}
+
+TEST_CASE("configs/*_all_keys.json are what config --complete writes of them") {
   for (const std::string name : {"sequence_all_keys.json", "remesh_all_keys.json"}) {
-    INFO("configs/" << name);
-    const json written = parse_json_strict(read_file(kRoot / "configs" / name));
-    std::vector<std::string> paths;
-    leaves(resolved(written), "", paths);
-    CHECK(paths.size() > 20);
-    for (const std::string& path : paths) {
-      INFO(path);
-      CHECK(find(written, path));
-    }
+    INFO("configs/" << name << "; regenerate it: seqmassage config --complete configs/" << name
+                    << " > new.json && mv new.json configs/" << name);
+    const fs::path file = kRoot / "configs" / name;
+    CHECK(read_file(file) == complete_config_file(file));
   }
 }
 
