@@ -385,19 +385,20 @@ int main(int argc, char** argv) {
   if (command == "merge") return guarded([&] { return run_merge_command(argc - 1, argv + 1); }, "");
   if (command == "config") {
     const std::string what = argc > 2 ? argv[2] : "";
+    const std::string file = what == "--complete" && argc == 4 ? argv[3] : "";
     return guarded(
         [&] {
           if (what == "--reference" && argc == 3)
             std::cout << sm::config_reference();
-          else if (what == "--complete" && argc == 4)
-            std::cout << sm::complete_config_file(argv[3]);
+          else if (!file.empty())
+            std::cout << sm::complete_config_file(file);
           else
             throw UsageError{"seqmassage",
                              "config takes --reference (the configuration reference) or "
                              "--complete FILE (FILE with every key spelled out)"};
           return int(kOk);
         },
-        what == "--complete" && argc == 4 ? argv[3] : "");
+        file);
   }
   if (command == "measure")
     return guarded(

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -29,15 +28,11 @@ void check_options(const MassageOptions& o, int n) {
     bad("vertex_weights", "expected " + std::to_string(n) +
                               " weights (one per template vertex), got " +
                               std::to_string(o.vertex_weights.size()));
-  for (size_t i = 0; i < o.vertex_weights.size(); ++i) {
-    const double w = o.vertex_weights[i];
-    if (!(w >= 0.0 && w <= 1.0)) {  // also NaN
-      char text[32];
-      *std::to_chars(text, text + sizeof text - 1, w).ptr = '\0';  // shortest: "1.5", "nan"
-      bad("vertex_weights[" + std::to_string(i) + "]",
-          "expected " + describe_numbers(closed(0, 1)) + ", got " + text);
-    }
-  }
+  const ValueSpec weight = closed(0, 1);  // NaN is outside it too
+  for (size_t i = 0; i < o.vertex_weights.size(); ++i)
+    if (!weight.contains(o.vertex_weights[i]))
+      throw number_error("massage.vertex_weights[" + std::to_string(i) + "]", weight,
+                         o.vertex_weights[i]);
 }
 
 // A_w = W A + (I − W): row i of A scaled by w_i, 1 − w_i added to its diagonal. Rows with

@@ -28,19 +28,21 @@ std::string describe_numbers(const ValueSpec& s) {
          number_text(s.hi) + (s.hi_open ? ")" : "]");
 }
 
+ConfigError number_error(const std::string& path, const ValueSpec& spec, double x) {
+  return ConfigError(path + ": expected " + describe_numbers(spec) + ", got " + number_text(x));
+}
+
 void check_ranges(const Entries& entries, const std::string& prefix) {
   for (const Entry& e : entries) {
     const ValueSpec& spec = e.info->spec;
     const std::string path = prefix + "." + std::string(e.info->key);
-    const auto fail = [&](const std::string& expected, const std::string& value) {
-      throw ConfigError(path + ": expected " + expected + ", got " + value);
-    };
     const auto check_integer = [&](int v) {  // bounds by key: checked where the keys are read
       if (spec.lo_key.empty() && spec.hi_key.empty() && !spec.contains(v))
-        fail(describe_integers(spec.lo, spec.hi), std::to_string(v));
+        throw ConfigError(path + ": expected " + describe_integers(spec.lo, spec.hi) + ", got " +
+                          std::to_string(v));
     };
     const auto check_number = [&](double v) {
-      if (!spec.contains(v)) fail(describe_numbers(spec), number_text(v));
+      if (!spec.contains(v)) throw number_error(path, spec, v);
     };
     if (auto* i = std::get_if<int*>(&e.value)) check_integer(**i);
     if (auto* i = std::get_if<std::optional<int>*>(&e.value); i && **i) check_integer(***i);

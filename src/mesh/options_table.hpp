@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "mesh/enum_names.hpp"
+#include "mesh/errors.hpp"
 
 namespace sm {
 
@@ -43,6 +44,8 @@ struct ValueSpec {
 std::string describe_integers(double lo, double hi);
 /// "a number > 0", "a number in [0, 1)".
 std::string describe_numbers(const ValueSpec& spec);
+/// The error of a number outside `spec`: "<path>: expected a number in [0, 1], got 1.5".
+ConfigError number_error(const std::string& path, const ValueSpec& spec, double x);
 
 // Value specs, for the tables.
 inline ValueSpec interval(double lo, bool lo_open, double hi, bool hi_open) {
