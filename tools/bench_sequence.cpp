@@ -171,8 +171,9 @@ double thread_seconds() {
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-// Stage timings of the per-frame work, one thread, mirroring process_frame.
-void stages(const fs::path& crane, const fs::path& scratch) {
+// Stage timings of the per-frame work, one thread, mirroring process_frame; the first frame is
+// the template. `quiet`: the summary only, not a line per frame.
+void stages(const fs::path& crane, const fs::path& scratch, bool quiet) {
   tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
   const std::vector<fs::path> frames = list_frames(crane, ".obj");
   const double t_setup = thread_seconds();
@@ -185,6 +186,9 @@ void stages(const fs::path& crane, const fs::path& scratch) {
   const double setup = thread_seconds() - t_setup;
   double read = 0, optimize = 0, measure = 0, write = 0, hash = 0, shear = 0, distance = 0;
   double hashed = 0;  // bytes
+  // Inside optimize: the frame's Reference, and the iterations' own timers (wall time of the
+  // thread, which on one thread is close to its CPU time).
+  double reference_seconds = 0, closest = 0, assemble = 0, solve = 0;
   int iterations = 0, count = 0;
   size_t hashes = 0;
   fs::create_directories(scratch / "frames");
@@ -198,9 +202,15 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     t0 = thread_seconds();
     const Reference reference(file.mesh, options.samples, "frame", massager.shared_topology(),
                               &massager.template_bvh());
+    reference_seconds += thread_seconds() - t0;
     const MassageResult result = massager.run(file.mesh.V, reference);
     optimize += (thread_seconds() - t0);
     iterations += static_cast<int>(result.iterations.size());
+    for (const IterationStats& it : result.iterations) {
+      closest += it.seconds_closest;
+      assemble += it.seconds_assemble;
+      solve += it.seconds_solve;
+    }
 
     t0 = thread_seconds();
     const Eigen::VectorXd before = shear_distortion(templ.V, file.mesh.V, templ.F);
@@ -226,7 +236,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
     hash += (thread_seconds() - t0);
     hashed += double(bytes.size() + obj.size() + csv.size());
     ++count;
-    std::printf(
+    if (!quiet)
+      std::printf(
         "  %s: shear max %.4g -> %.4g, mean %.4g -> %.4g | dist out->in max %.3e rms %.3e, "
         "in->out max %.3e rms %.3e | %d its\n",
         frames[k].filename().string().c_str(), sb.max, sa.max, sb.mean, sa.mean, distances.moved_to_original.max,
@@ -238,6 +249,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
       " once):\n"
       "  read     %7.1f ms/frame  (%4.1f%%)\n"
       "  optimize %7.1f ms/frame  (%4.1f%%)  %.1f ms per iteration, %.1f iterations/frame\n"
+      "           reference %.1f ms, iterations: closest %.1f, assemble %.1f, solve %.1f ms, "
+      "the rest (run set-up, relabelling, fold check) %.1f ms\n"
       "  measure  %7.1f ms/frame  (%4.1f%%)  shear %.1f ms, distances %.1f ms\n"
       "  write    %7.1f ms/frame  (%4.1f%%)  formatted, written atomically\n"
       "  hash     %7.2f ms/frame  (%4.1f%%)  SHA-256 of the input and outputs for the record, "
@@ -245,7 +258,10 @@ void stages(const fs::path& crane, const fs::path& scratch) {
       "  total    %7.1f ms/frame, %.1f frames/s on one thread\n",
       count, templ.num_vertices(), 1e3 * setup, 1e3 * read / count, 100 * read / total,
       1e3 * optimize / count, 100 * optimize / total, 1e3 * optimize / iterations,
-      double(iterations) / count, 1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
+      double(iterations) / count, 1e3 * reference_seconds / count, 1e3 * closest / count,
+      1e3 * assemble / count, 1e3 * solve / count,
+      1e3 * (optimize - reference_seconds - closest - assemble - solve) / count,
+      1e3 * measure / count, 100 * measure / total, 1e3 * shear / count,
       1e3 * distance / count, 1e3 * write / count, 100 * write / total, 1e3 * hash / count,
       100 * hash / total, hashed / hash / 1e6, 1e3 * total / count,
       count / total);
@@ -256,7 +272,8 @@ void stages(const fs::path& crane, const fs::path& scratch) {
 
 int main(int argc, char** argv) {
   fs::path data = fs::path(SEQMASSAGE_SOURCE_DIR) / ".." / "shared" / "data";
-  fs::path keep;
+  fs::path keep, stages_dir;
+  bool quiet_frames = false;
   std::string seqmassage = g_seqmassage;
   int repeat = 3, short_frames = 50, long_frames = 1000;
   bool no_memory = false, no_stages = false, no_job = false, tables = false, spacing = false,
@@ -280,6 +297,11 @@ int main(int argc, char** argv) {
   app.add_option("--long", long_frames, "memory: the longer generated sequence (default 1000)")
       ->type_name("N")
       ->transform(sm::cli::integer_in(2, 100000));
+  app.add_option("--stages-dir", stages_dir,
+                 "the per-frame stages on this folder of OBJ frames (the first is the template) "
+                 "instead of the crane")
+      ->type_name("DIR");
+  app.add_flag("--quiet-frames", quiet_frames, "stages: the summary only, no line per frame");
   app.add_flag("--no-memory", no_memory, "skip memory against sequence length");
   app.add_flag("--no-stages", no_stages, "skip the per-frame stages");
   app.add_flag("--no-job", no_job, "skip the whole job");
@@ -313,11 +335,13 @@ int main(int argc, char** argv) {
               scratch.string().c_str());
 
   const fs::path crane = data / "sequences" / "vlasic_crane";
-  if (!fs::exists(crane / "frame_0000.obj")) {
+  if (!stages_dir.empty()) {
+    if (stage_timings) stages(stages_dir, scratch / "stages", quiet_frames);
+  } else if (!fs::exists(crane / "frame_0000.obj")) {
     std::printf("crane: skipped, %s not found (the real data lives in ../shared/data)\n",
                 crane.string().c_str());
   } else if (stage_timings) {
-    stages(crane, scratch / "stages");
+    stages(crane, scratch / "stages", quiet_frames);
   }
   if (job && fs::exists(crane / "frame_0000.obj")) {
     const int frames = static_cast<int>(list_frames(crane, ".obj").size());
