@@ -368,11 +368,13 @@ TEST_CASE("Ctrl-C stops the run with code 130, the frames done are recorded") {
     ::execl(SEQMASSAGE_BIN, SEQMASSAGE_BIN, "long.json", static_cast<char*>(nullptr));
     ::_exit(98);
   }
-  // Interrupt once the run has started (the generated input is being written).
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(dir / "out/input") && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // Interrupt once the first frame is recorded: an event of the run, not a guess of its speed
+  // (the deadline only bounds a hung run).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (!fs::exists(dir / "out/records/frame_0000.json") &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  REQUIRE(fs::exists(dir / "out/records/frame_0000.json"));
   ::kill(pid, SIGINT);
   int status = 0;
   ::waitpid(pid, &status, 0);

@@ -8,6 +8,8 @@
 #include <random>
 #include <thread>
 
+#include <sys/wait.h>
+
 #include "io/atomic_file.hpp"
 #include "io/obj.hpp"
 #include "pipeline/frame_record.hpp"
@@ -46,6 +48,20 @@ bool is_temporary(const fs::path& p) {
   const std::string name = p.filename().string();
   return name.size() > kTempSuffix.size() &&
          name.compare(name.size() - kTempSuffix.size(), kTempSuffix.size(), kTempSuffix) == 0;
+}
+
+bool has_temporary(const fs::path& out) {
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(out, ec), end; !ec && it != end; it.increment(ec))
+    if (is_temporary(it->path())) return true;
+  return false;
+}
+
+// Whether `pid` has ended, leaving it to be reaped by test::wait_cli.
+bool has_ended(pid_t pid) {
+  siginfo_t info{};
+  return ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+         info.si_pid == pid;
 }
 
 // Checks that every file under `out` but temporaries is complete: OBJ frames parse with the
@@ -102,27 +118,26 @@ TEST_CASE("SIGKILL at random moments leaves complete files; --resume ends with t
   const int vertices = 24 * 25;
   write_text(dir / "job.json", job());
 
-  const auto t0 = Clock::now();
   const test::CliRun whole = test::run_cli(dir.path(), "-q job.json");
-  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   REQUIRE(whole.code == 0);
   fs::rename(dir / "out", dir / "whole");  // same output path for both: report.json names it
 
-  // Each round resumes and is killed at a random moment: once a random number of the remaining
-  // frames are done, plus a random part of one frame's time (so inside frames and their writes).
-  std::mt19937 rng(20240611);  // reproducible kill times
+  // Each round resumes and is killed at an event of the run, never after a guessed time: once a
+  // random number of the remaining frames are recorded, and on odd rounds only when a temporary
+  // is also on disk (a write in flight). The deadline only bounds a hung run.
+  std::mt19937 rng(20240611);  // reproducible targets
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const double frame_seconds = seconds / 30;
   int temporaries = 0, kills = 0;
   for (int round = 0; round < 6; ++round) {
     const int done = count_records(dir / "out");
     const int target = done + int(uniform(rng) * (30 - done) * 0.8);
+    const bool mid_write = round % 2 == 1;
     const pid_t pid = test::spawn_cli(dir.path(), {"--resume", "job.json"});
     REQUIRE(pid > 0);
     const auto deadline = Clock::now() + std::chrono::seconds(120);
-    while (count_records(dir / "out") < target && Clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    std::this_thread::sleep_for(std::chrono::duration<double>(uniform(rng) * frame_seconds));
+    while (Clock::now() < deadline && !has_ended(pid) &&
+           (count_records(dir / "out") < target || (mid_write && !has_temporary(dir / "out"))))
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
     ::kill(pid, SIGKILL);
     const int status = test::wait_cli(pid);
     kills += status == 128 + SIGKILL;

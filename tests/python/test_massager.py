@@ -1,5 +1,6 @@
 """seqmassage.Massager: the same positions as the command line, iteration figures, threads,
 array layouts, the remesh use."""
+import gc
 import threading
 
 import numpy as np
@@ -110,10 +111,20 @@ def test_array_layouts_and_dtypes_give_the_same_result():
 
 def test_the_result_owns_its_positions():
     vertices, triangles = tube()
-    result = seqmassage.Massager(vertices, triangles).run(vertices * 1.05)
-    assert result.vertices.shape == vertices.shape and result.vertices.dtype == np.float64
-    assert result.vertices.flags.c_contiguous
-    assert result.vertices is result.vertices  # one array, not a copy per access
+    massager = seqmassage.Massager(vertices, triangles)
+    start = vertices * 1.05
+    result = massager.run(start)
+    positions = result.vertices
+    assert positions.shape == vertices.shape and positions.dtype == np.float64
+    assert positions.flags.c_contiguous
+    assert positions is result.vertices  # one array, not a copy per access
+    assert not np.shares_memory(positions, start)
+    kept = positions.copy()
+    # The array outlives the result and the Massager, and does not follow the input.
+    del result, massager
+    gc.collect()
+    start[:] = 0.0
+    assert np.array_equal(positions, kept)
 
 
 def test_remesh_use_against_another_mesh():
