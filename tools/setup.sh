@@ -23,7 +23,7 @@ apt_install() {
 have_pkg() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 
 required=(g++ make cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libtinygltf-dev catch2
-  libssl-dev libstb-dev libcli11-dev pybind11-dev python3-dev python3-numpy python3-pytest)
+  libssl-dev libstb-dev libcli11-dev pybind11-dev python3-dev python3-numpy python3-pytest ccache)
 missing=()
 for p in "${required[@]}"; do have_pkg "$p" || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
