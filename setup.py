@@ -75,5 +75,7 @@ setup(
     version=project_version(),
     ext_modules=[Extension("seqmassage", sources=[])],
     cmdclass={"build_ext": CMakeBuild, "build_py": NoPythonSources},
+    # setuptools' own scratch folders inside build-pip/, not in CMake's build/.
+    options={"build": {"build_base": str(ROOT / "build-pip" / "setuptools")}},
     zip_safe=False,
 )

@@ -1,5 +1,7 @@
 """run_job's progress callback and its cancel, Massager.run_many against a loop of run, and the
 point caches' reader and writer (headers checked against the formats written out by hand)."""
+import os
+import signal
 import struct
 
 import numpy as np
@@ -124,3 +126,19 @@ def test_point_cache_errors_name_the_file(tmp_path):
     with pytest.raises(seqmassage.InputError, match="vertex 3"):
         seqmassage.write_point_cache(target, [template, bad])
     assert not target.exists()  # atomic: nothing written
+
+
+def test_ctrl_c_stops_run_between_iterations():
+    template, triangles = tube(segments=16, rings=8)
+    massager = seqmassage.Massager(template, triangles, iterations=10, tolerance=0)
+    calls = []
+
+    def interrupt(stats, vertices):  # SIGINT as Ctrl-C sends it, during the first iteration
+        calls.append(stats["iteration"])
+        os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        massager.run(drifted(template, 3), on_iteration=interrupt)
+    assert len(calls) == 1  # stopped after the iteration in which it came, not at the end
+    # The Massager is usable afterwards, with the same result as before.
+    assert massager.run(drifted(template, 3)).ok
