@@ -23,7 +23,11 @@ apt_install() {
 have_pkg() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 
 required=(g++ make cmake libeigen3-dev libtbb-dev nlohmann-json3-dev libtinygltf-dev catch2
-  libssl-dev libstb-dev libcli11-dev pybind11-dev python3-dev python3-numpy python3-pytest ccache)
+  libssl-dev libstb-dev libcli11-dev pybind11-dev python3-dev python3-numpy python3-pytest
+  # Installing and packaging (tests/tools/test_install.sh, test_deb.sh, test_pip.sh): the man
+  # page, the .deb's Depends (dpkg-shlibdeps, file), pip in a venv, the stubs' type check, and
+  # ccache, which lets the pip build reuse the objects of build/.
+  help2man man-db dpkg-dev file python3-venv python3-setuptools python3-wheel mypy ccache)
 missing=()
 for p in "${required[@]}"; do have_pkg "$p" || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then

@@ -4,7 +4,7 @@ caches, through the seqmassage Python module. See docs/blender.md."""
 bl_info = {
     "name": "seqmassage",
     "author": "seqmassage contributors",
-    "version": (0, 1, 0),
+    "version": (0, 5, 0),  # the zip takes project(VERSION) of CMakeLists.txt
     "blender": (3, 4, 0),
     "location": "Properties > Object > Mesh Massage",
     "description": "Correct texture swimming in shape keys and PC2/MDD point caches "
@@ -15,14 +15,14 @@ bl_info = {
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
 
-    for _name in ("loader", "schema", "pointcache", "massaging", "properties", "operators",
+    for _name in ("loader", "schema", "massaging", "properties", "operators",
                   "panel"):
         if _name in locals():
             importlib.reload(locals()[_name])
 
 import bpy  # noqa: E402
 
-from . import loader, massaging, operators, panel, pointcache, properties, schema  # noqa: E402,F401
+from . import loader, massaging, operators, panel, properties, schema  # noqa: E402,F401
 
 
 def register():

@@ -1,8 +1,9 @@
 """Finding and importing the seqmassage Python module.
 
 Looked for, in order: a `seqmassage*.so` copied into this package's folder, the folder set in the
-add-on's preferences (e.g. a checkout's `build/python`), then a plain `import seqmassage` (on
-PYTHONPATH or installed). An extension module cannot be unloaded, so once one is imported it
+add-on's preferences (e.g. a checkout's `build/python`), then a plain `import seqmassage`: the
+installed module (the .deb's /usr/lib/python3/dist-packages, `cmake --install`'s or pip's) or one
+on PYTHONPATH, with no preference set. An extension module cannot be unloaded, so once one is imported it
 stays for the Blender session; `status()` says which one and from where.
 """
 import glob
@@ -64,8 +65,8 @@ def load(preferences_path=""):
     except ImportError as e:
         tried.append(f"import seqmassage: {e}")
     _error = ("the seqmassage module was not found: " + "; ".join(tried) +
-              ". Build it (cmake, build/python) and set its folder in the add-on's preferences, "
-              "or copy seqmassage*.so into the add-on folder")
+              ". Install it (the seqmassage .deb, cmake --install, or pip install), or build it "
+              "(cmake, build/python) and set its folder in the add-on's preferences")
     return None
 
 

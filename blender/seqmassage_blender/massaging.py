@@ -1,18 +1,19 @@
 """Massaging frames with the module, and measuring them: what both operators share (no bpy).
 
-Frames run on a thread pool: the module releases the GIL while a frame runs and one Massager may
-be used from several threads at once, so the frames of a shape-key set or a cache run in
-parallel, as the command line's frames do. Each frame's result is independent of the others.
+Frames run in batches through Massager.run_many, which massages a batch in parallel on the
+module's threads (TBB, the GIL released) and gives each frame the bits Massager.run gives it; an
+operator runs one batch per step, so that between batches Blender redraws its progress and sees
+Esc. Each frame's result is independent of the others.
 """
 import os
-from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 
 class FrameResult:
-    """One frame: `vertices` (n x 3 float64; the input's when the frame failed), `ok`,
-    `failure`, `iterations`, and mean shear (eq. 8) against the template before and after."""
+    """One frame: `vertices` (n x 3 float32, as Blender stores them; the input's when the frame
+    failed), `ok`, `failure`, `iterations`, and mean shear (eq. 8) against the template before
+    and after."""
 
     def __init__(self, vertices, ok, failure, iterations, shear_before, shear_after):
         self.vertices, self.ok, self.failure = vertices, ok, failure
@@ -36,30 +37,45 @@ def make_massager(module, template, triangles, kwargs, weights=None):
                            np.ascontiguousarray(triangles, dtype=np.int32), **kwargs)
 
 
-def run_frame(module, massager, template, triangles, vertices):
-    vertices = np.ascontiguousarray(vertices, dtype=np.float64)
-    result = massager.run(vertices)
-    ok = bool(result.ok)
-    out = np.asarray(result.vertices, dtype=np.float64) if ok else vertices
-    return FrameResult(out, ok, getattr(result, "failure", "") or "", list(result.iterations),
-                       mean_shear(module, template, vertices, triangles),
-                       mean_shear(module, template, out, triangles))
+def batch_size():
+    """Frames per step: one per core, so that a step keeps every core busy once."""
+    return max(1, os.cpu_count() or 1)
 
 
-def iter_frames(module, massager, template, triangles, frames, threads=0):
-    """FrameResults of `frames` (a sequence of n x 3 arrays, e.g. a memory-mapped cache), in
-    order, with at most 2 x threads frames in flight, so memory does not grow with the frames."""
-    threads = max(1, threads or os.cpu_count() or 1)
-    total = len(frames)
-    with ThreadPoolExecutor(max_workers=min(threads, max(total, 1))) as pool:
-        pending = []
-        submitted = 0
-        for k in range(total):
-            while submitted < total and len(pending) < 2 * threads:
-                pending.append(pool.submit(run_frame, module, massager, template, triangles,
-                                           frames[submitted]))
-                submitted += 1
-            yield pending.pop(0).result()
+def run_batch(module, massager, template, triangles, frames):
+    """FrameResults of `frames` (n x 3 arrays), massaged in parallel by Massager.run_many."""
+    inputs = [np.ascontiguousarray(f, dtype=np.float64) for f in frames]
+    out = []
+    for vertices, result in zip(inputs, massager.run_many(inputs)):
+        ok = bool(result.ok)
+        moved = np.asarray(result.vertices, dtype=np.float64) if ok else vertices
+        out.append(FrameResult(moved.astype(np.float32), ok, result.failure or "",
+                               list(result.iterations),
+                               mean_shear(module, template, vertices, triangles),
+                               mean_shear(module, template, moved, triangles)))
+    return out
+
+
+class Batches:
+    """`frames` (a sequence of n x 3 arrays) massaged a batch at a time: step() runs the next batch
+    and says whether any is left; `results` holds the FrameResults so far, in order."""
+
+    def __init__(self, module, massager, template, triangles, frames, size=0):
+        self.module, self.massager = module, massager
+        self.template, self.triangles, self.frames = template, triangles, frames
+        self.size = size or batch_size()
+        self.results = []
+
+    @property
+    def total(self):
+        return len(self.frames)
+
+    def step(self):
+        start = len(self.results)
+        stop = min(start + self.size, self.total)
+        self.results += run_batch(self.module, self.massager, self.template, self.triangles,
+                                  [self.frames[k] for k in range(start, stop)])
+        return len(self.results) < self.total
 
 
 def describe(name, r):

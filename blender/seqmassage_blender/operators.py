@@ -4,7 +4,7 @@ import os
 import bpy
 import numpy as np
 
-from . import loader, massaging, pointcache, properties, schema
+from . import loader, massaging, properties, schema
 
 MASSAGED = ".massaged"
 
@@ -56,6 +56,44 @@ class _Massage:
         obj = context.active_object
         return obj is not None and obj.type == "MESH" and context.mode == "OBJECT"
 
+    # Each operator defines prepare(context) -> bool (sets self.batches, or reports why not) and
+    # finish(context, cancelled) -> the operator's result. From a script (execute) every batch
+    # runs at once; from the panel (invoke) the operator runs modal, one batch per timer tick,
+    # with Blender's progress indicator, and Esc cancels after the batch in flight: what is done
+    # is kept (shape keys) as one undo step.
+
+    def execute(self, context):
+        if not self.prepare(context):
+            return {"CANCELLED"}
+        while self.batches.step():
+            pass
+        return self.finish(context, cancelled=False)
+
+    def invoke(self, context, event):
+        if not self.prepare(context):
+            return {"CANCELLED"}
+        wm = context.window_manager
+        wm.progress_begin(0, self.batches.total)
+        self._timer = wm.event_timer_add(0.01, window=context.window)
+        wm.modal_handler_add(self)
+        self.report({"INFO"}, f"massaging {self.batches.total} frames (Esc cancels)")
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        if event.type == "ESC" and event.value == "PRESS":
+            return self._end(context, cancelled=True)
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        more = self.batches.step()
+        context.window_manager.progress_update(len(self.batches.results))
+        return {"RUNNING_MODAL"} if more else self._end(context, cancelled=False)
+
+    def _end(self, context, cancelled):
+        wm = context.window_manager
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        return self.finish(context, cancelled)
+
     def setting(self, obj, name):
         """The operator's `name` when given (from a script, or the panel's button), else the
         object's panel option of that name."""
@@ -99,40 +137,46 @@ class SEQMASSAGE_OT_massage_shape_keys(_Massage, bpy.types.Operator):
     bl_label = "Massage Shape Keys"
     bl_options = {"REGISTER", "UNDO"}
 
-    def execute(self, context):
+    def prepare(self, context):
         obj = context.active_object
         mesh = obj.data
         keys = mesh.shape_keys
         if keys is None or len(keys.key_blocks) < 2:
             self.report({"ERROR"}, f"{obj.name}: needs a basis shape key and at least one other")
-            return {"CANCELLED"}
+            return False
         basis = keys.reference_key
         frames = [kb for kb in keys.key_blocks
                   if kb != basis and not kb.name.endswith(MASSAGED)]
         if not frames:
             self.report({"ERROR"}, f"{obj.name}: no shape keys besides the basis "
                                    f"(keys named *{MASSAGED} are results, not frames)")
-            return {"CANCELLED"}
+            return False
         n = len(mesh.vertices)
         tris = triangles(mesh)
         template = _positions(basis.data, n)
         got = self.massager(context, obj, template, tris)
         if got is None:
-            return {"CANCELLED"}
+            return False
         m, massager = got
-        inputs = [_positions(kb.data, n) for kb in frames]
-        wm = context.window_manager
-        wm.progress_begin(0, len(frames))
-        results = []
-        for k, r in enumerate(massaging.iter_frames(m, massager, template, tris, inputs)):
-            results.append(r)
-            wm.progress_update(k + 1)
-        wm.progress_end()
+        self.keys = [kb.name for kb in frames]
+        self.batches = massaging.Batches(m, massager, template, tris,
+                                         [_positions(kb.data, n) for kb in frames])
+        return True
+
+    def finish(self, context, cancelled):
+        obj = context.active_object
+        results = self.batches.results
         keep = self.setting(obj, "keep_original")
-        for kb, r in zip(frames, results):
-            self.store(obj, kb, r, keep)
-            self.report({"INFO"} if r.ok else {"WARNING"}, massaging.describe(kb.name, r))
-        self.report({"INFO"}, summary(f"{obj.name}: {len(frames)} shape keys", results))
+        blocks = obj.data.shape_keys.key_blocks
+        for name, r in zip(self.keys, results):
+            self.store(obj, blocks[name], r, keep)
+            self.report({"INFO"} if r.ok else {"WARNING"}, massaging.describe(name, r))
+        what = f"{obj.name}: {len(results)} of {len(self.keys)} shape keys"
+        if cancelled:
+            self.report({"WARNING"}, f"{what}: cancelled; the keys massaged so far are kept")
+            if not results:
+                return {"CANCELLED"}
+        self.report({"INFO"}, summary(what, results))
         return {"FINISHED"}
 
     def store(self, obj, kb, r, keep_original):
@@ -174,23 +218,6 @@ def massaged_path(path):
     return stem + MASSAGED + ext
 
 
-class _Written:
-    """The corrected frames as pointcache.write takes them, collecting the results' figures."""
-
-    def __init__(self, frames, count, wm):
-        self.frames, self.count, self.wm = frames, count, wm
-        self.results = []
-
-    def __len__(self):
-        return self.count
-
-    def __iter__(self):
-        for r in self.frames:
-            self.results.append(r)
-            self.wm.progress_update(len(self.results))
-            yield r.vertices
-
-
 class SEQMASSAGE_OT_massage_mesh_cache(_Massage, bpy.types.Operator):
     """Correct the texture swimming of the Mesh Cache modifier's PC2 or MDD file against the
     object's mesh: writes <name>.massaged.pc2 (or .mdd) beside it and points the modifier at it"""
@@ -199,23 +226,30 @@ class SEQMASSAGE_OT_massage_mesh_cache(_Massage, bpy.types.Operator):
     bl_label = "Massage Mesh Cache"
     bl_options = {"REGISTER", "UNDO"}
 
-    def execute(self, context):
+    def prepare(self, context):
         obj = context.active_object
         md = mesh_cache_modifier(obj)
         if md is None:
             self.report({"ERROR"}, f"{obj.name}: no Mesh Cache modifier")
-            return {"CANCELLED"}
+            return False
+        m = properties.module(context)
+        if m is None:
+            self.report({"ERROR"}, loader.status())
+            return False
         path = bpy.path.abspath(md.filepath)
         try:
-            cache = pointcache.read(path, md.cache_format)
-        except pointcache.CacheError as e:
+            # The module's reader: the header checked against the file's size, every position
+            # finite; the format as the modifier reads the file.
+            cache = m.read_point_cache(path, format=md.cache_format.lower())
+        except (ValueError, OSError) as e:
             self.report({"ERROR"}, str(e))
-            return {"CANCELLED"}
+            return False
         n = len(obj.data.vertices)
-        if cache.num_points != n:
-            self.report({"ERROR"}, f"{path}: {cache.num_points} points, but the mesh of "
+        frames, points = cache.frames.shape[0], cache.frames.shape[1]
+        if points != n:
+            self.report({"ERROR"}, f"{path}: {points} points, but the mesh of "
                                    f"{obj.name} has {n} vertices")
-            return {"CANCELLED"}
+            return False
         if md.deform_mode != "OVERWRITE":
             self.report({"WARNING"}, f"{md.name}: deform mode {md.deform_mode}; the cache's "
                                      f"positions are massaged as absolute positions")
@@ -223,27 +257,37 @@ class SEQMASSAGE_OT_massage_mesh_cache(_Massage, bpy.types.Operator):
         template = _positions(obj.data.vertices, n)
         got = self.massager(context, obj, template, tris)
         if got is None:
+            return False
+        self.module, massager = got
+        self.cache, self.path, self.modifier = cache, path, md.name
+        self.batches = massaging.Batches(self.module, massager, template, tris, cache.frames)
+        return True
+
+    def finish(self, context, cancelled):
+        results = self.batches.results
+        name = os.path.basename(self.path)
+        if cancelled:
+            # A cache is one file: nothing is written unless every frame was massaged.
+            self.report({"WARNING"}, f"{name}: cancelled after {len(results)} of "
+                                     f"{self.batches.total} frames; nothing written")
             return {"CANCELLED"}
-        m, massager = got
-        out = massaged_path(path)
-        wm = context.window_manager
-        wm.progress_begin(0, cache.num_frames)
-        frames = _Written(massaging.iter_frames(m, massager, template, tris, cache.frames),
-                          cache.num_frames, wm)
+        cache = self.cache
+        out = massaged_path(self.path)
         try:
-            pointcache.write(out, cache.format, frames, cache.start, cache.rate, cache.times)
-        except (OSError, pointcache.CacheError) as e:
+            self.module.write_point_cache(out, [r.vertices for r in results], format=cache.format,
+                                          start=cache.start, sample_rate=cache.sample_rate,
+                                          times=cache.times or None)
+        except (ValueError, OSError) as e:
             self.report({"ERROR"}, f"{out}: {e}")
             return {"CANCELLED"}
-        finally:
-            wm.progress_end()
+        md = context.active_object.modifiers[self.modifier]
         relative = md.filepath.startswith("//")
         md.filepath = bpy.path.relpath(out) if relative else out
-        failed = [k for k, r in enumerate(frames.results) if not r.ok]
+        failed = [k for k, r in enumerate(results) if not r.ok]
         for k in failed[:10]:
-            self.report({"WARNING"}, massaging.describe(f"frame {k}", frames.results[k]))
-        self.report({"INFO"}, summary(f"{os.path.basename(path)}: {cache.num_frames} frames",
-                                      frames.results) + f"; written to {out}")
+            self.report({"WARNING"}, massaging.describe(f"frame {k}", results[k]))
+        self.report({"INFO"}, summary(f"{name}: {len(results)} frames", results) +
+                    f"; written to {out}")
         return {"FINISHED"}
 
 

@@ -39,8 +39,9 @@ class SEQMASSAGE_AP_preferences(bpy.types.AddonPreferences):
     module_path: bpy.props.StringProperty(
         name="Module folder", subtype="DIR_PATH", update=_module_path_changed,
         description="Folder holding the seqmassage Python module (seqmassage*.so), e.g. a "
-                    "checkout's build/python; not needed when the module was copied into the "
-                    "add-on's folder or is on PYTHONPATH")
+                    "checkout's build/python; not needed when the module is installed (the .deb, "
+                    "cmake --install, pip) where Blender's Python finds it, on PYTHONPATH, or "
+                    "copied into the add-on's folder")
 
     def draw(self, context):
         layout = self.layout

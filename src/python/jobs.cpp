@@ -3,9 +3,11 @@
 
 #include <atomic>
 #include <filesystem>
+#include <optional>
 #include <variant>
 
 #include "config/config.hpp"
+#include "pipeline/frame_record.hpp"
 #include "pipeline/mesh_job.hpp"
 #include "pipeline/mesh_report.hpp"
 #include "pipeline/report.hpp"
@@ -50,23 +52,77 @@ class SigintAsCancel {
   struct sigaction previous_ {};
 };
 
+// run_job's progress callback, called per frame as the job writes them (in frame order, one at a
+// time, with the GIL): progress(frame, status, figures). It cancels the job by returning False
+// or raising; the exception is raised again once the frames in flight are written.
+class ProgressCallback {
+ public:
+  explicit ProgressCallback(py::object callback) : callback_(std::move(callback)) {}
+
+  bool given() const { return !callback_.is_none(); }
+  bool cancelled() const { return cancel_; }
+
+  void operator()(const FrameSummary& frame, int done, int total, double elapsed) {
+    py::gil_scoped_acquire locked;
+    if (cancel_) return;  // cancelled already: the frames in flight still arrive
+    try {
+      py::dict figures = from_json(to_json(frame), true).cast<py::dict>();
+      figures["done"] = done;
+      figures["total"] = total;
+      figures["elapsed_seconds"] = elapsed;
+      const py::object answer =
+          callback_(frame.frame, std::string(status_name(frame.status)), figures);
+      if (!answer.is_none() && !answer.cast<bool>()) cancel_ = true;
+    } catch (py::error_already_set& e) {
+      error_ = std::move(e);
+      cancel_ = true;
+    }
+  }
+
+  /// Raises what the callback raised, if it did.
+  void rethrow() {
+    if (error_) {
+      py::error_already_set e = std::move(*error_);
+      error_.reset();
+      throw e;
+    }
+  }
+
+ private:
+  py::object callback_;
+  std::atomic<bool> cancel_{false};
+  std::optional<py::error_already_set> error_;
+};
+
 // The sequence job as the command line runs it; Ctrl-C stops it the way SIGINT stops the
 // command (the frames in flight are finished and written, the report records the
-// interruption), then raises KeyboardInterrupt.
-nlohmann::json run_sequence(const SequenceJobOptions& config) {
+// interruption), then raises KeyboardInterrupt. A progress callback that cancels stops it the
+// same way; run_job then returns the report (its "interrupted" says so).
+nlohmann::json run_sequence(const SequenceJobOptions& config, const py::object& callback) {
   nlohmann::json report;
   bool interrupted = false;
+  ProgressCallback progress(callback);
   {
     SigintAsCancel sigint;
+    // The one flag the job polls: SIGINT's (on the main thread) or a local one; the callback's
+    // cancel sets it too.
+    std::atomic<bool> local{false};
+    std::atomic<bool>& stop = sigint.flag() ? g_cancel : local;
     RunHooks hooks;
-    hooks.cancel = sigint.flag();
+    hooks.cancel = &stop;
+    if (progress.given())
+      hooks.progress = [&](const FrameSummary& f, int done, int total, double elapsed) {
+        progress(f, done, total, elapsed);
+        if (progress.cancelled()) stop = true;
+      };
     py::gil_scoped_release unlocked;
     const SequencePlan plan = plan_sequence_job(config);
     const SequenceResult result = run_sequence_job(plan, hooks);
     interrupted = result.interrupted;
     report = make_report(plan, result);
   }
-  if (interrupted) {
+  progress.rethrow();
+  if (interrupted && !progress.cancelled()) {
     PyErr_SetNone(PyExc_KeyboardInterrupt);
     throw py::error_already_set();
   }
@@ -84,7 +140,7 @@ nlohmann::json run_mesh(const MeshJobOptions& config) {
 void bind_jobs(py::module_& m) {
   m.def(
       "run_job",
-      [](const py::object& config) {
+      [](const py::object& config, const py::object& progress) {
         AnyJobOptions job;
         if (py::isinstance<py::dict>(config)) {
           // Relative paths resolve against the working directory (a file's: against its folder).
@@ -96,20 +152,28 @@ void bind_jobs(py::module_& m) {
           job = load_any_config(path);
         }
         const nlohmann::json report = std::visit(
-            [](const auto& options) {
+            [&progress](const auto& options) {
               if constexpr (std::is_same_v<std::decay_t<decltype(options)>, SequenceJobOptions>)
-                return run_sequence(options);
+                return run_sequence(options, progress);
               else
                 return run_mesh(options);
             },
             job);
         return from_json(report);
       },
-      py::arg("config"),
-      "run_job(config) -> dict: runs the job of a config, a dict (paths relative to the working "
-      "directory) or the path of a JSON file (paths relative to its folder), as `seqmassage "
-      "CONFIG.json` does, writing the same files, and returns its report (report.json). A "
-      "sequence whose frames fail still returns: see the report's failures.");
+      py::arg("config"), py::arg("progress") = py::none(),
+      "run_job(config, progress=None) -> dict: runs the job of a config, a dict (paths relative "
+      "to the working directory) or the path of a JSON file (paths relative to its folder), as "
+      "`seqmassage CONFIG.json` does, writing the same files, and returns its report "
+      "(report.json). A sequence whose frames fail still returns: see the report's failures.\n\n"
+      "progress(frame, status, figures), if given, is called for each frame of a sequence as it "
+      "is written, in frame order: the frame's index, its status (\"optimized\", \"failed\", "
+      "...) and its figures (the frame's record: shear_before, shear_after, distances, "
+      "iterations, seconds, ... and done, total, elapsed_seconds). Returning False cancels the "
+      "job: no further frame starts, the frames in flight are written, and the report (with "
+      "\"interrupted\") is returned; an exception raised by the callback cancels it the same "
+      "way and is raised again. Ctrl-C stops it likewise and raises KeyboardInterrupt. Mesh "
+      "jobs (one mesh) do not call it.");
 }
 
 }  // namespace sm::python

@@ -1,12 +1,15 @@
 /// seqmassage.Massager: a Massager built once from a template, run on frames from any number of
 /// Python threads at once (Massager::run is const and its state read-only; the GIL is released
 /// while it runs).
+#include <atomic>
 #include <memory>
 #include <optional>
+#include <thread>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <oneapi/tbb/parallel_for.h>
 #include <pybind11/stl.h>  // std::optional (Result.failure)
 
 #include "io/options_json.hpp"
@@ -80,6 +83,57 @@ bool weights_as_numbers(const py::handle& value) {
          !py::hasattr(value, "__fspath__");
 }
 
+// One frame as the sequence job runs it (pipeline/sequence_job.cpp): the frame is the reference,
+// with the template's topology and a refit of its BVH; the start is the reference's copy of the
+// positions. Massager.run(vertices) and Massager.run_many use this, so they agree bit for bit.
+MassageResult run_frame(const Massager& engine, Positions V, const IterationObserver& observer) {
+  const Reference ref(TriMesh{std::move(V), engine.triangles()}, engine.options().samples,
+                      "vertices", engine.shared_topology(), &engine.template_bvh());
+  return engine.run(ref.mesh().V, ref, observer);
+}
+
+// Thrown from an iteration observer to stop a run: Ctrl-C (a Python exception is then set) or
+// another run of run_many stopped by it.
+struct Stopped {};
+
+// Ctrl-C between iterations: on the thread Python delivers signals to, each iteration takes the
+// GIL and runs the signal handlers (PyErr_CheckSignals); KeyboardInterrupt (or whatever the
+// handler raised) stops the run, and `stop` stops the other runs of a batch at their next
+// iteration. The iterates are the observer's to see, not to change, so a run checked this way
+// gives the same bits as one that is not.
+class SignalCheck {
+ public:
+  SignalCheck() : main_(std::this_thread::get_id()) {
+    const py::module_ threading = py::module_::import("threading");
+    active_ = threading.attr("current_thread")().is(threading.attr("main_thread")());
+  }
+  // Throws Stopped if the run should stop.
+  void operator()() {
+    if (stop_) throw Stopped{};
+    if (!active_ || std::this_thread::get_id() != main_) return;
+    py::gil_scoped_acquire locked;
+    if (PyErr_CheckSignals() != 0) {
+      stop_ = true;
+      error_.emplace();  // fetches the exception the handler raised
+      throw Stopped{};
+    }
+  }
+  // After the run(s), with the GIL: raises what a signal handler raised.
+  void rethrow() {
+    if (error_) {
+      py::error_already_set e = std::move(*error_);
+      error_.reset();
+      throw e;
+    }
+  }
+
+ private:
+  std::thread::id main_;
+  bool active_ = false;
+  std::atomic<bool> stop_{false};
+  std::optional<py::error_already_set> error_;
+};
+
 class PyMassager {
  public:
   PyMassager(const DoubleArray& template_vertices, const py::handle& triangles,
@@ -130,14 +184,17 @@ class PyMassager {
       throw InputError("vertices: " + std::to_string(rows) + " rows, the template has " +
                        std::to_string(engine.num_vertices()) + " vertices");
 
-    IterationObserver observer;
-    if (!on_iteration.is_none())
-      observer = [&on_iteration](const IterationStats& stats, const Positions& V) {
+    SignalCheck signals;
+    IterationObserver observer = [&signals, &on_iteration](const IterationStats& stats,
+                                                           const Positions& V) {
+      if (!on_iteration.is_none()) {
         py::gil_scoped_acquire locked;
         on_iteration(iteration_dict(stats), to_numpy(V));
-      };
+      }
+      signals();
+    };
     MassageResult result;
-    {
+    try {
       py::gil_scoped_release unlocked;
       if (other) {
         // As the single-mesh jobs build theirs; with the template's triangles, as a frame's.
@@ -148,15 +205,48 @@ class PyMassager {
                             same ? &engine.template_bvh() : nullptr);
         result = engine.run(start, ref, observer);
       } else {
-        // Exactly as the sequence job does for a frame (pipeline/sequence_job.cpp): the frame is
-        // the reference, with the template's topology and a refit of its BVH; the start is the
-        // reference's copy of the positions.
-        const Reference ref(std::move(frame), samples, "vertices", engine.shared_topology(),
-                            &engine.template_bvh());
-        result = engine.run(ref.mesh().V, ref, observer);
+        result = run_frame(engine, std::move(frame.V), observer);
       }
+    } catch (const Stopped&) {
+      signals.rethrow();
+      throw;
     }
     return to_result(std::move(result));
+  }
+
+  // Many frames, in parallel (TBB; the GIL released): each exactly as run(frame) computes it.
+  std::vector<Result> run_many(const py::object& frames) const {
+    const Massager& engine = *engine_;
+    std::vector<Positions> inputs;
+    {
+      const py::iterator it = py::iter(frames);
+      for (const py::handle item : it) {
+        const std::string what = "frames[" + std::to_string(inputs.size()) + "]";
+        inputs.push_back(to_positions(item.cast<DoubleArray>(), what.c_str()));
+        if (inputs.back().rows() != engine.num_vertices())
+          throw InputError(what + ": " + std::to_string(inputs.back().rows()) +
+                           " rows, the template has " + std::to_string(engine.num_vertices()) +
+                           " vertices");
+      }
+    }
+    std::vector<MassageResult> results(inputs.size());
+    SignalCheck signals;
+    const IterationObserver observer = [&signals](const IterationStats&, const Positions&) {
+      signals();
+    };
+    try {
+      py::gil_scoped_release unlocked;
+      tbb::parallel_for(size_t{0}, inputs.size(), [&](size_t k) {
+        results[k] = run_frame(engine, std::move(inputs[k]), observer);
+      });
+    } catch (const Stopped&) {
+      signals.rethrow();
+      throw;
+    }
+    std::vector<Result> out;
+    out.reserve(results.size());
+    for (MassageResult& r : results) out.push_back(to_result(std::move(r)));
+    return out;
   }
 
   int num_vertices() const { return engine_->num_vertices(); }
@@ -214,9 +304,17 @@ void bind_massager(py::module_& m) {
            "the template's triangles starting at `vertices` (n×3); the reference surface is the "
            "frame itself (None, the sequence job's use) or a mesh (vertices, triangles) (the "
            "remesh job's use). on_iteration(stats, vertices), if given, is called after every "
-           "iteration. The GIL is released while it runs.")
-      .def_property_readonly("num_vertices", &PyMassager::num_vertices)
-      .def_property_readonly("num_triangles", &PyMassager::num_triangles)
+           "iteration. The GIL is released while it runs; Ctrl-C stops it between iterations "
+           "(KeyboardInterrupt).")
+      .def("run_many", &PyMassager::run_many, py::arg("frames"),
+           "run_many(frames) -> list[Result]: run(frame) for every frame of `frames` (an "
+           "iterable of n×3 arrays, or an F×n×3 array), in parallel on TBB's threads with the "
+           "GIL released; each result is bit for bit the one run(frame) returns. Ctrl-C stops "
+           "the batch between iterations (KeyboardInterrupt).")
+      .def_property_readonly("num_vertices", &PyMassager::num_vertices,
+                             "vertices of the template (rows of every frame)")
+      .def_property_readonly("num_triangles", &PyMassager::num_triangles,
+                             "triangles of the template")
       .def_property_readonly("options", &PyMassager::options,
                              "every massage key with its value, as a dict");
 }

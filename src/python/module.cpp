@@ -13,10 +13,15 @@ namespace sm::python {
 void bind_errors(py::module_& m) {
   // Translators are tried from the last registered one; the four classes are siblings, so the
   // order does not matter. Any other std::exception becomes a RuntimeError (pybind11's default).
-  py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
-  py::register_exception<IoError>(m, "IoError", PyExc_OSError);
-  py::register_exception<SolverError>(m, "SolverError", PyExc_RuntimeError);
+  py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError)
+      .attr("__doc__") = "A key or value of **massage, **measures or a config: unknown key, wrong "
+                         "type, out of range (the message names the key).";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError)
+      .attr("__doc__") = "A malformed mesh, array, frame or input file (the message names it).";
+  py::register_exception<IoError>(m, "IoError", PyExc_OSError)
+      .attr("__doc__") = "A file or folder that cannot be read or written.";
+  py::register_exception<SolverError>(m, "SolverError", PyExc_RuntimeError)
+      .attr("__doc__") = "An internal numerical failure.";
 }
 
 }  // namespace sm::python
@@ -31,6 +36,7 @@ PYBIND11_MODULE(seqmassage, m) {
   sm::python::bind_keys(m);
   sm::python::bind_measures(m);
   sm::python::bind_jobs(m);
+  sm::python::bind_point_caches(m);
   const nlohmann::json versions = sm::version_info();
   m.attr("__version__") = versions["seqmassage"].get<std::string>();
   m.attr("versions") = sm::python::from_json(versions);

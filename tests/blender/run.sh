@@ -27,7 +27,7 @@ cli="$build/src/cli/seqmassage"
 [ -x "$cli" ] || { log "FAILED: no $cli"; exit 1; }
 
 export SEQMASSAGE_ROOT="$root" SEQMASSAGE_MODULE_DIR="$module_dir" SEQMASSAGE_CLI="$cli" \
-  SEQMASSAGE_TEST_DIR="$build/blender-test"
+  SEQMASSAGE_TEST_DIR="$build/blender-test" SEQMASSAGE_ADDON_ZIP="$build/blender/seqmassage_blender.zip"
 # The add-on must find the module itself (its preferences), not through the environment.
 unset PYTHONPATH
 failed=0

@@ -31,7 +31,7 @@ def played(obj, count):
 
 def round_trip(addon, m, frames, tris, work, fmt):
     path = os.path.join(work, f"tube.{fmt.lower()}")
-    addon.pointcache.write(path, fmt, frames, 0.0, 1.0)
+    addon.loader.load().write_point_cache(path, frames, format=fmt.lower())
     original = open(path, "rb").read()
     obj, md = cache_object(addon, frames, tris, path, fmt, f"tube_{fmt}")
     check(np.array_equal(played(obj, len(frames)), frames),

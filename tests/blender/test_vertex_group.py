@@ -84,7 +84,7 @@ def explicit_operator_setting(frames, tris):
 
 def mesh_cache(addon, frames, tris, work):
     path = os.path.join(work, "tube.pc2")
-    addon.pointcache.write(path, "PC2", frames, 0.0, 1.0)
+    addon.loader.load().write_point_cache(path, frames, format="pc2")
     obj = tube_object(frames, tris, "tube_cache", shape_keys=False)
     weights = weighted_group(obj, frames)
     still = weights == 0

@@ -54,7 +54,8 @@ SEQUENCE_CONFIG = {
 @pytest.fixture(scope="session")
 def cli_sequence(tmp_path_factory):
     """A generated drifted tube run through the command line: (output folder, report)."""
-    cli = BUILD / "src" / "cli" / "seqmassage"
+    # SEQMASSAGE_CLI: another command line (the module installed elsewhere, e.g. by pip).
+    cli = pathlib.Path(os.environ.get("SEQMASSAGE_CLI", BUILD / "src" / "cli" / "seqmassage"))
     if not cli.exists():
         pytest.skip(f"the command line is not built ({cli})")
     folder = tmp_path_factory.mktemp("cli")
