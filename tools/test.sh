@@ -74,7 +74,8 @@ fi
 
 if [ "${SEQMASSAGE_SKIP_SANITIZERS:-0}" != 1 ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEQMASSAGE_ASAN=ON \
-    -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_PYTHON=OFF -DSEQMASSAGE_UNITY_BUILD=ON >/dev/null
+    -DSEQMASSAGE_BUILD_TOOLS=OFF -DSEQMASSAGE_PYTHON=OFF -DSEQMASSAGE_UNITY_BUILD=ON \
+    "${launcher[@]}" >/dev/null
   cmake --build build-asan -j"$jobs"
   stage "ASan+UBSan build"
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
