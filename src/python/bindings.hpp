@@ -16,5 +16,7 @@ void bind_keys(pybind11::module_& m);
 void bind_measures(pybind11::module_& m);
 /// run_job().
 void bind_jobs(pybind11::module_& m);
+/// Tracker (frames of any connectivity).
+void bind_tracker(pybind11::module_& m);
 
 }  // namespace sm::python
