@@ -217,14 +217,14 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
   std::vector<Match> forward(samples.size()), backward(raw.samples.size());
   FitResult result;
 
+  const double sigma_start = options.robust_scale * h * schedule.scale;
   const int stages = options.stages;
   for (int stage = std::min(schedule.first_stage, stages - 1); stage < stages; ++stage) {
     const double f = stages > 1 ? static_cast<double>(stage) / (stages - 1) : 1.0;
     const double lambda =
         options.regularizer * std::pow(options.regularizer_final / options.regularizer, f);
     const double sigma =
-        h * std::max(options.robust_scale_final, options.robust_scale * std::pow(0.5, stage)) *
-        schedule.scale;
+        std::max(options.robust_scale_final * h, sigma_start * std::pow(0.5, stage));
     const double max_dist = options.max_distance * sigma;
     for (int it = 0; it < options.iterations; ++it) {
       const Positions V = graph.deform(X);
@@ -284,20 +284,24 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
       for (const Match& m : backward) {
         if (!m.kept) continue;
         ++kept;
+        // The template point under the raw sample, deformed with the node weights of its
+        // nearest corner: 6 nodes instead of the union of three corners' (up to 18), at the
+        // cost of a Jacobian that is exact only at that corner.
         const int t = m.triangle;
-        int count = 0;
-        for (int k = triangle_nodes.begin(t); k < triangle_nodes.end(t) && count < 64; ++k) {
-          nodes[count] = triangle_nodes.data[k];
-          q[count++].setZero();
-        }
-        Vec3 at = Vec3::Zero();
+        int corner = 0;
+        for (int c = 1; c < 3; ++c)
+          if (m.bary[c] > m.bary[corner]) corner = c;
+        const int v = templ.F(t, corner);
+        Vec3 x = Vec3::Zero(), at = Vec3::Zero();
         for (int c = 0; c < 3; ++c) {
-          const int v = templ.F(t, c);
-          at += m.bary[c] * V.row(v).transpose();
-          for (int k = graph.begin(v); k < graph.end(v); ++k) {
-            const int i = static_cast<int>(std::find(nodes, nodes + count, graph.node(k)) - nodes);
-            q[i] += m.bary[c] * graph.coefficient(k);
-          }
+          x += m.bary[c] * templ.V.row(templ.F(t, c)).transpose();
+          at += m.bary[c] * V.row(templ.F(t, c)).transpose();
+        }
+        int count = 0;
+        for (int k = graph.begin(v); k < graph.end(v); ++k, ++count) {
+          nodes[count] = graph.node(k);
+          const double w = graph.weight(k);
+          q[count] << w * (x - graph.node_positions().row(nodes[count]).transpose()), w;
         }
         add_term(blocks, rhs, X, nodes, q, count, matrix(m), at - m.target);
       }
