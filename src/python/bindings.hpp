@@ -18,5 +18,7 @@ void bind_measures(pybind11::module_& m);
 void bind_jobs(pybind11::module_& m);
 /// read_point_cache(), write_point_cache() and PointCache.
 void bind_point_caches(pybind11::module_& m);
+/// Tracker (frames of any connectivity).
+void bind_tracker(pybind11::module_& m);
 
 }  // namespace sm::python

@@ -37,6 +37,7 @@ PYBIND11_MODULE(seqmassage, m) {
   sm::python::bind_measures(m);
   sm::python::bind_jobs(m);
   sm::python::bind_point_caches(m);
+  sm::python::bind_tracker(m);
   const nlohmann::json versions = sm::version_info();
   m.attr("__version__") = versions["seqmassage"].get<std::string>();
   m.attr("versions") = sm::python::from_json(versions);
