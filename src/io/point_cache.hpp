@@ -48,9 +48,9 @@ struct PointCacheHeader {
 /// The header of the cache held by `data`, whose first bytes are `data` and whose whole size is
 /// `file_size` (data may hold the header only). `name` prefixes messages. Throws InputError for a
 /// wrong magic or version (PC2), a count that is not >= 1, a size that is not the one the counts
-/// give (truncated, or trailing bytes), a non-finite MDD frame time (naming the frame), a PC2
-/// start frame beyond 1e18 in magnitude or a sample rate not in (0, 1e18] (so that every frame
-/// number start + i × rate is finite in float32, and a cache written from them is readable).
+/// give (truncated, or trailing bytes), a non-finite MDD frame time (naming the frame), and a PC2
+/// timing that pc2_timing_problem (io/point_cache_timing.hpp) refuses: a sample rate not above 0,
+/// a frame number start + k × rate beyond 1e18 in magnitude.
 PointCacheHeader parse_point_cache_header(std::string_view data, uint64_t file_size,
                                           PointCacheFormat format, const std::string& name);
 
