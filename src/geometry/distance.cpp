@@ -11,16 +11,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/sample_budget.hpp"
 #include "geometry/triangle_grid.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
 namespace {
 
-// Bounds on the subdivisions of one edge and one triangle, so that a single huge triangle in a
-// finely meshed model cannot ask for billions of samples.
-constexpr long kMaxEdgeSegments = 1 << 20;
-constexpr long kMaxFaceDivisions = 1 << 12;
 // Samples of the adaptive coarse pass per task, in index order (fixed, so that nothing depends
 // on the number of threads).
 constexpr int kCoarseChunk = 512;
@@ -30,9 +27,9 @@ struct Partial {
   long count = 0;
 };
 
+// In floating point, then clamped (sample_budget.hpp): length / h may exceed any integer.
 long divisions(double length, double h, long cap) {
-  if (!(h > 0.0)) return 1;
-  return std::clamp(static_cast<long>(std::ceil(length / h)), 1L, cap);
+  return sample_divisions(length, h, cap);
 }
 
 // The grid's cell: the mean edge length of B's triangles (each triangle's three edges).
@@ -298,6 +295,8 @@ DistanceStats measure(const TriMesh& A, const TriangleBvh& B, const DistanceOpti
     own_layout = DistanceLayout(A.F, A.num_vertices());
     layout = &own_layout;
   }
+  // Refused before any sample is taken when the spacing asks for more than the budget.
+  check_distance_samples(A, *layout, options, "the sampled mesh");
   const int triangles_b = static_cast<int>(FB.rows());
   DistanceStats stats = options.adaptive
                             ? adaptive_distance(A, query, *layout, options, triangles_b, *work)

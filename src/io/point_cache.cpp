@@ -1,4 +1,5 @@
 #include "io/point_cache.hpp"
+#include "io/point_cache_timing.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -9,6 +10,7 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
+#include "mesh/coordinate_limit.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -19,6 +21,10 @@ namespace {
 constexpr char kPc2Magic[12] = {'P', 'O', 'I', 'N', 'T', 'C', 'A', 'C', 'H', 'E', '2', '\0'};
 constexpr uint64_t kPc2HeaderBytes = 32;  // magic, version, points, start, rate, samples
 constexpr uint64_t kMddHeaderBytes = 8;   // frames, points (then the frame times)
+// A PC2's frame numbers start + k × rate (k below the sample count) lie within 1e18 in
+// magnitude, the coordinate limit: a cache written from a selection of them (start = a selected
+// frame's number, rate = the step between two) then keeps them finite in float32, and reads back.
+constexpr double kMaxFrameNumber = 1e18;
 
 bool big_endian(PointCacheFormat format) {
   return format == PointCacheFormat::Mdd;
@@ -105,6 +111,20 @@ void check_size(const PointCacheHeader& h, uint64_t file_size, const std::string
 
 }  // namespace
 
+std::string pc2_timing_problem(float start, float sample_rate, int samples) {
+  if (!std::isfinite(start) || !std::isfinite(sample_rate))
+    return "start frame (" + number(start) + ") or sample rate (" + number(sample_rate) +
+           ") is not finite";
+  if (!(sample_rate > 0.0f))
+    return "sample rate " + number(sample_rate) +
+           " is not positive (it is the number of frames from one sample to the next)";
+  const double last = double(start) + double(std::max(samples, 1) - 1) * double(sample_rate);
+  if (std::fabs(double(start)) > kMaxFrameNumber || std::fabs(last) > kMaxFrameNumber)
+    return "frames run from " + number(start) + " to " + number(last) +
+           " (start frame + (samples - 1) x sample rate), beyond 1e18 in magnitude";
+  return "";
+}
+
 const char* point_cache_format_label(PointCacheFormat format) {
   return format == PointCacheFormat::Pc2 ? "PC2" : "MDD";
 }
@@ -130,9 +150,9 @@ PointCacheHeader parse_point_cache_header(std::string_view data, uint64_t file_s
     h.start = load_f32(p + 20, big);
     h.sample_rate = load_f32(p + 24, big);
     h.frames = count(load_i32(p + 28, big), "sample count", name);
-    if (!std::isfinite(h.start) || !std::isfinite(h.sample_rate))
-      throw InputError(name + ": the header's start frame (" + number(h.start) +
-                       ") or sample rate (" + number(h.sample_rate) + ") is not finite");
+    if (const std::string problem = pc2_timing_problem(h.start, h.sample_rate, h.frames);
+        !problem.empty())
+      throw InputError(name + ": the header's " + problem);
     h.data_offset = kPc2HeaderBytes;
     check_size(h, file_size, name);
     return h;
@@ -219,6 +239,12 @@ Positions decode_point_cache_frame(std::string_view bytes, const PointCacheHeade
       throw InputError(name + ": frame " + std::to_string(frame) + ", vertex " +
                        std::to_string(v) + ": non-finite position (" + number(V(v, 0)) + ", " +
                        number(V(v, 1)) + ", " + number(V(v, 2)) + ")");
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(V(v, k)) > kMaxCoordinate)  // as every mesh reader: io/obj.cpp, ply, off
+        throw InputError(name + ": frame " + std::to_string(frame) + ", vertex " +
+                         std::to_string(v) + ": coordinate " + "xyz"[k] + " " + number(V(v, k)) +
+                         " is too large (more than 1e18 in magnitude: the geometry would "
+                         "overflow)");
   }
   return V;
 }
@@ -265,6 +291,16 @@ std::string format_point_cache_frame(PointCacheFormat format, const Positions& V
 void write_point_cache(const fs::path& path, PointCacheFormat format, int points, int frames,
                        const PointCacheTiming& timing,
                        const std::function<Positions(int)>& frame) {
+  // What the reader refuses is never written: a header the program cannot read back.
+  const std::string name = "'" + path.string() + "'";
+  if (format == PointCacheFormat::Pc2)
+    if (const std::string problem = pc2_timing_problem(timing.start, timing.sample_rate, frames);
+        !problem.empty())
+      throw InputError(name + ": cannot be written, its reader would refuse it: its " + problem);
+  for (size_t f = 0; f < timing.times.size(); ++f)
+    if (!std::isfinite(timing.times[f]))
+      throw InputError(name + ": frame " + std::to_string(f) + ": the frame time " +
+                       number(timing.times[f]) + " cannot be written (MDD times are finite)");
   AtomicFileWriter file(path);
   file.write(format_point_cache_header(format, points, frames, timing));
   for (int f = 0; f < frames; ++f) {

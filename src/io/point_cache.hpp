@@ -48,7 +48,9 @@ struct PointCacheHeader {
 /// The header of the cache held by `data`, whose first bytes are `data` and whose whole size is
 /// `file_size` (data may hold the header only). `name` prefixes messages. Throws InputError for a
 /// wrong magic or version (PC2), a count that is not >= 1, a size that is not the one the counts
-/// give (truncated, or trailing bytes), and a non-finite MDD frame time (naming the frame).
+/// give (truncated, or trailing bytes), a non-finite MDD frame time (naming the frame), and a PC2
+/// timing that pc2_timing_problem (io/point_cache_timing.hpp) refuses: a sample rate not above 0,
+/// a frame number start + k × rate beyond 1e18 in magnitude.
 PointCacheHeader parse_point_cache_header(std::string_view data, uint64_t file_size,
                                           PointCacheFormat format, const std::string& name);
 
@@ -64,7 +66,9 @@ std::string read_point_cache_frame_bytes(const std::filesystem::path& file,
                                          const PointCacheHeader& header, int frame);
 
 /// The n×3 positions of frame `frame` from its raw bytes (header.frame_bytes() of them). Throws
-/// InputError "<name>: frame F, vertex V: non-finite position (x, y, z)" for NaN or infinity.
+/// InputError "<name>: frame F, vertex V: non-finite position (x, y, z)" for NaN or infinity,
+/// and "<name>: frame F, vertex V: coordinate y 1e+30 is too large (more than 1e18 ...)" beyond
+/// kMaxCoordinate (mesh/coordinate_limit.hpp), as every mesh reader.
 Positions decode_point_cache_frame(std::string_view bytes, const PointCacheHeader& header,
                                    int frame, const std::string& name);
 
@@ -87,8 +91,9 @@ std::string format_point_cache_frame(PointCacheFormat format, const Positions& V
 
 /// Writes `path` atomically: the header, then frame(0), frame(1), ... frame(frames − 1), each
 /// (points × 3, checked) encoded and written before the next is asked for, so that memory holds
-/// one frame. Throws IoError if the file cannot be written, InputError for a frame of the wrong
-/// size or not finite in float32, and whatever `frame` throws (the destination is then untouched).
+/// one frame. Throws IoError if the file cannot be written, InputError for a timing the reader
+/// would refuse (before anything is written), a frame of the wrong size or not finite in float32,
+/// and whatever `frame` throws (the destination is then untouched).
 void write_point_cache(const std::filesystem::path& path, PointCacheFormat format, int points,
                        int frames, const PointCacheTiming& timing,
                        const std::function<Positions(int)>& frame);

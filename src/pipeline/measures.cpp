@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/sample_budget.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/topology.hpp"
 
@@ -32,6 +33,25 @@ double diagonal_of_both(const Positions& a, const Positions& b) {
   return (hi - lo).norm();
 }
 
+// A feature edge is split into at most this many parts.
+constexpr long kMaxFeatureEdgeParts = 1L << 16;
+
+// The points feature_samples takes (below), counted in floating point.
+double feature_sample_count(const TriMesh& N, const FeatureEdges& features, double h) {
+  std::vector<unsigned char> seen(N.num_vertices(), 0);
+  double count = 0.0;
+  for (const auto& e : features.vertices) {
+    for (int v : e)
+      if (!seen[v]) {
+        seen[v] = 1;
+        count += 1.0;
+      }
+    const double length = (N.vertex(e[1]) - N.vertex(e[0])).norm();
+    count += double(sample_divisions(length, h, kMaxFeatureEdgeParts) - 1);
+  }
+  return count;
+}
+
 // Points along the feature edges of N: every feature vertex once, then the interior points of
 // each edge split into ceil(L / h) equal parts.
 std::vector<Vec3> feature_samples(const TriMesh& N, const FeatureEdges& features, double h) {
@@ -45,8 +65,7 @@ std::vector<Vec3> feature_samples(const TriMesh& N, const FeatureEdges& features
       }
   for (const auto& e : features.vertices) {
     const Vec3 a = N.vertex(e[0]), d = N.vertex(e[1]) - a;
-    const long parts =
-        h > 0.0 ? std::clamp(static_cast<long>(std::ceil(d.norm() / h)), 1L, 1L << 16) : 1L;
+    const long parts = sample_divisions(d.norm(), h, kMaxFeatureEdgeParts);
     for (long j = 1; j < parts; ++j) points.push_back(a + (double(j) / double(parts)) * d);
   }
   return points;
@@ -144,6 +163,13 @@ MeshMeasures measure_mesh(const TriMesh& mesh, const MeasureReference& reference
   DistanceOptions sampling;
   sampling.spacing = o.spacing;
   sampling.adaptive = o.adaptive;
+  if (!identical) {  // the spacing within the budget, both ways and on N's feature edges
+    check_distance_samples(mesh, sampling, "the measured mesh");
+    check_distance_samples(N, sampling, "the reference");
+    check_sample_budget(
+        feature_sample_count(N, reference.features(), o.spacing * mean_edge_length(N)),
+        N.num_triangles(), o.spacing, false, "the reference's feature edges");
+  }
   const TriangleBvh mesh_bvh(mesh);
   if (!identical) {
     m.to_reference = one_sided_distance(mesh, reference.bvh(), sampling);

@@ -1,11 +1,15 @@
 #include "pipeline/output_point_cache.hpp"
 
 #include <cctype>
+#include <cfloat>
+#include <cmath>
 
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "io/mesh_file.hpp"
 #include "io/obj.hpp"
 #include "io/point_cache.hpp"
+#include "mesh/errors.hpp"
 #include "pipeline/output_frames.hpp"
 #include "pipeline/shard.hpp"
 
@@ -20,6 +24,16 @@ double frame_number(const FrameSource& source, int index) {
   if (const PointCacheHeader* h = source.point_cache(); h && h->format == PointCacheFormat::Pc2)
     return double(h->start) + double(index) * double(h->sample_rate);
   return double(index);
+}
+
+// A header value in float32. A PC2 input's frame numbers are bounded (io/point_cache.hpp), so only
+// an MDD time (frame number / output.point_cache.fps) can be beyond float32's range, and only
+// for an fps far below any real one.
+float header_value(double x, const std::string& what) {
+  if (!(std::fabs(x) <= double(FLT_MAX)))
+    throw ConfigError("output.point_cache.fps: " + what + " would be " + format_number(x) +
+                      ", beyond float32's range: the point cache could not be read back");
+  return static_cast<float>(x);
 }
 
 bool is_obj(const fs::path& file) {
@@ -40,16 +54,18 @@ PointCacheTiming point_cache_timing(PointCacheFormat format, const FrameSource& 
   PointCacheTiming t;
   if (format == PointCacheFormat::Pc2) {
     const PointCacheHeader* h = source.point_cache();
-    t.start = float(frame_number(source, frames.front()));
+    t.start = header_value(frame_number(source, frames.front()), "the start frame");
     if (frames.size() > 1)
-      t.sample_rate = float(frame_number(source, frames[1]) - frame_number(source, frames[0]));
+      t.sample_rate = header_value(
+          frame_number(source, frames[1]) - frame_number(source, frames[0]), "the sample rate");
     else
       t.sample_rate = h && h->format == PointCacheFormat::Pc2 ? h->sample_rate : 1.0f;
     return t;
   }
   for (int i : frames) {
     const std::optional<double> time = source.time(i);
-    t.times.push_back(float(time ? *time : frame_number(source, i) / options.fps));
+    t.times.push_back(header_value(time ? *time : frame_number(source, i) / options.fps,
+                                   "the time of frame " + std::to_string(i)));
   }
   return t;
 }

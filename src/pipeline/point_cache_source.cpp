@@ -1,7 +1,9 @@
 #include "pipeline/point_cache_source.hpp"
 
 #include <cctype>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 
 #include "io/atomic_file.hpp"
 #include "io/mesh_file.hpp"
@@ -97,9 +99,21 @@ class PointCacheSource : public FrameSource {
     frame.obj = layout_;
     return frame;
   }
-  // The frame's positions and the mesh (whose statements an OBJ output copies).
-  std::string input_hash(int, const std::string& fetched) const override {
-    return sha256_hex(mesh_hash_ + " " + sha256_hex(fetched));
+  // The frame's positions and the mesh (whose statements an OBJ output copies); an MDD frame's
+  // time too (summary.csv and the MDD output carry it), so that --resume redoes a frame whose
+  // time alone changed. A PC2's frames have no time of their own: their hash is unchanged.
+  std::string input_hash(int i, const std::string& fetched) const override {
+    std::string text = mesh_hash_ + " " + sha256_hex(fetched);
+    if (!header_.times.empty()) {
+      uint32_t bits;
+      const float time = header_.times[size_t(i)];
+      std::memcpy(&bits, &time, 4);
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "%08x", unsigned(bits));
+      text += " time ";
+      text += hex;
+    }
+    return sha256_hex(text);
   }
 
  private:

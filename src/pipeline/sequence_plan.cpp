@@ -11,6 +11,7 @@
 #include "io/csv.hpp"
 #include "io/mesh_file.hpp"
 #include "io/vertex_weights.hpp"
+#include "geometry/sample_budget.hpp"
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
 #include "pipeline/frame_output.hpp"
@@ -143,6 +144,9 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
         c.massage.vertex_weights_file, plan.templ.num_vertices(), plan.template_source);
   plan.processor = std::make_shared<const FrameProcessor>(plan.templ, c, plan.template_source,
                                                           plan.template_frame);
+  // Frames have the template's triangles (the Massager has validated them): a spacing beyond the
+  // sampling budget on the template is refused before any frame is read.
+  check_distance_samples(plan.templ, c.measures, "the template, " + plan.template_source);
   const Massager& massager = plan.processor->massager();
   plan.config_hash = frame_config_hash(c);
   plan.template_hash = template_hash(plan.templ);

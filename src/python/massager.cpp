@@ -136,7 +136,7 @@ class SignalCheck {
 
 class PyMassager {
  public:
-  PyMassager(const DoubleArray& template_vertices, const py::handle& triangles,
+  PyMassager(const py::object& template_vertices, const py::handle& triangles,
              const py::kwargs& massage) {
     MassageOptions options;
     // A copy, from which vertex_weights as numbers is taken out.
@@ -151,8 +151,13 @@ class PyMassager {
     // The weights as the jobs take them: numbers directly (the Massager checks their count and
     // range, in the config's words), a file (relative to the working directory) read as the
     // config's.
-    if (!numbers.is_none())
+    if (!numbers.is_none()) {
       options.vertex_weights = to_numbers(numbers, "massage.vertex_weights");
+      // No numbers are no weights for the engine: refused, as a file holding none is.
+      if (options.vertex_weights.empty())
+        throw ConfigError("massage.vertex_weights: expected " + std::to_string(templ.V.rows()) +
+                          " weights (one per template vertex), got 0");
+    }
     else if (!options.vertex_weights_file.empty())
       options.vertex_weights = read_vertex_weights(
           options.vertex_weights_file, static_cast<int>(templ.V.rows()), "template_vertices");
@@ -160,7 +165,7 @@ class PyMassager {
     engine_ = std::make_shared<const Massager>(templ, std::move(options), "template");
   }
 
-  Result run(const DoubleArray& vertices, const py::object& reference,
+  Result run(const py::object& vertices, const py::object& reference,
              const py::object& on_iteration) const {
     const Massager& engine = *engine_;
     const SampleKind samples = engine.options().samples;
@@ -172,7 +177,7 @@ class PyMassager {
       if (mesh.size() != 2)
         throw InputError("reference: expected a mesh (vertices, triangles), got " +
                          std::to_string(mesh.size()) + " items");
-      other.emplace(TriMesh{to_positions(mesh[0].cast<DoubleArray>(), "reference vertices"),
+      other.emplace(TriMesh{to_positions(mesh[0], "reference vertices"),
                             to_triangles(mesh[1], "reference triangles")});
     }
     Positions start;
@@ -293,7 +298,7 @@ void bind_massager(py::module_& m) {
   py::class_<PyMassager>(m, "Massager",
                          "The optimizer for one template: built once, run on any number of "
                          "frames, from several threads at once.")
-      .def(py::init<const DoubleArray&, const py::handle&, const py::kwargs&>(),
+      .def(py::init<const py::object&, const py::handle&, const py::kwargs&>(),
            py::arg("template_vertices"), py::arg("triangles"),
            "Massager(template_vertices, triangles, **massage): n×3 float64 positions and m×3 "
            "integer triangles of the template T; the keyword arguments are the keys of the "

@@ -15,7 +15,7 @@ namespace sm::python {
 void bind_measures(py::module_& m) {
   m.def(
       "shear",
-      [](const DoubleArray& template_vertices, const DoubleArray& vertices,
+      [](const py::object& template_vertices, const py::object& vertices,
          const py::handle& triangles) {
         const Positions T = to_positions(template_vertices, "template_vertices");
         const Positions V = to_positions(vertices, "vertices");
@@ -34,8 +34,8 @@ void bind_measures(py::module_& m) {
 
   m.def(
       "distances",
-      [](const DoubleArray& a_vertices, const py::handle& a_triangles,
-         const DoubleArray& b_vertices, const py::handle& b_triangles,
+      [](const py::object& a_vertices, const py::handle& a_triangles,
+         const py::object& b_vertices, const py::handle& b_triangles,
          const py::kwargs& measures) {
         MeasureOptions options;
         read_options(to_json(measures, "measures"), options, std::filesystem::current_path(),

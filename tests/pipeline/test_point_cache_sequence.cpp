@@ -3,8 +3,10 @@
 // round trips against the OBJ-folder run, shards + merge and resume giving the same bytes.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "io/atomic_file.hpp"
 #include "io/frame_folder.hpp"
@@ -242,4 +244,111 @@ TEST_CASE("a point cache input is checked: vertex counts, non-finite positions")
   CHECK_THAT(error_of<InputError>([&] { plan_sequence_job(c); }),
              Contains("take.pc2': frame 2, vertex 7: non-finite position (nan, "));
   CHECK_FALSE(fs::exists(c.output.dir));
+}
+
+// Issue 24.4: the values of a point cache under the limits of every other reader.
+
+namespace {
+
+// Column `name` of every row of a CSV file without quoted fields.
+std::vector<std::string> csv_column(const fs::path& file, const std::string& name) {
+  std::istringstream in(read_file(file));
+  std::string line;
+  const auto split = [](const std::string& text) {
+    std::vector<std::string> cells;
+    std::string cell;
+    std::istringstream row(text);
+    while (std::getline(row, cell, ',')) cells.push_back(cell);
+    if (!text.empty() && text.back() == ',') cells.push_back("");
+    return cells;
+  };
+  std::getline(in, line);
+  const std::vector<std::string> header = split(line);
+  const size_t at = size_t(std::find(header.begin(), header.end(), name) - header.begin());
+  REQUIRE(at < header.size());
+  std::vector<std::string> out;
+  while (std::getline(in, line)) out.push_back(split(line).at(at));
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a PC2 input beyond the readers' limits is refused at planning, nothing written") {
+  test::TempDir dir("pc2_limits");
+  SequenceJobOptions c = float_tube_job(dir.path(), 3);
+  const PointCacheInput cache = cache_of_folder(c.input.frames, dir.path(), PointCacheFormat::Pc2);
+  use_cache(c, cache);
+  c.output.format = OutputFormat::Pc2;
+  const std::string good = read_file(cache.file);
+  const std::string name = "'" + cache.file.string() + "'";
+  const auto refused = [&](size_t at, float value) {
+    std::string bytes = good;
+    std::memcpy(&bytes[at], &value, 4);
+    write_file_atomic(cache.file, bytes);
+    const std::string message = error_of<InputError>([&] { plan_sequence_job(c); });
+    CHECK_FALSE(fs::exists(c.output.dir));
+    return message;
+  };
+  // A coordinate of 1e30 (frame 1, vertex 5, z): the OBJ, PLY, OFF and glTF readers' limit.
+  CHECK(refused(32 + 132 * 12 + 5 * 12 + 8, 1e30f) ==
+        name + ": frame 1, vertex 5: coordinate z 1.00000002e+30 is too large (more than 1e18 in "
+               "magnitude: the geometry would overflow)");
+  // A start frame or sample rate of 3e38: finite, but the output's start + rate would not be.
+  CHECK(refused(20, 3e38f) == name + ": the header's frames run from 3.00000001e+38 to "
+                                     "3.00000001e+38 (start frame + (samples - 1) x sample "
+                                     "rate), beyond 1e18 in magnitude");
+  CHECK(refused(24, 3e38f) == name + ": the header's frames run from 0 to 6.00000001e+38 (start "
+                                     "frame + (samples - 1) x sample rate), beyond 1e18 in "
+                                     "magnitude");
+  CHECK(refused(24, 0.0f) == name + ": the header's sample rate 0 is not positive (it is the "
+                                    "number of frames from one sample to the next)");
+  CHECK(refused(24, -2.0f) == name + ": the header's sample rate -2 is not positive (it is the "
+                                     "number of frames from one sample to the next)");
+
+  // At the limits the job runs, and its output reads back: frames 0 and 2 of start -1e18, rate
+  // 1e18 are frames -1e18 and 1e18 (as float32 values), written as start -1e18, rate 2e18.
+  std::string edge = good;
+  const float start = -1e18f, rate = 1e18f;
+  std::memcpy(&edge[20], &start, 4);
+  std::memcpy(&edge[24], &rate, 4);
+  write_file_atomic(cache.file, edge);
+  c.input.range = {0, std::nullopt, 2};
+  c.massage.iterations = 1;
+  run(c);
+  const PointCacheHeader h =
+      read_point_cache_header(c.output.dir / "sequence.pc2", PointCacheFormat::Pc2);
+  CHECK(h.frames == 2);
+  CHECK(h.start == start);
+  CHECK(h.sample_rate == float(2.0 * double(rate)));
+}
+
+TEST_CASE("an MDD's frame times are part of what --resume compares") {
+  test::TempDir dir("mdd_resume_times");
+  SequenceJobOptions c = float_tube_job(dir.path(), 3);
+  const PointCacheInput cache = cache_of_folder(c.input.frames, dir.path(), PointCacheFormat::Mdd);
+  use_cache(c, cache);
+  c.output.format = OutputFormat::Mdd;
+  c.massage.iterations = 1;
+  run(c);
+  const fs::path out = c.output.dir / "sequence.mdd";
+  CHECK(read_point_cache_header(out, PointCacheFormat::Mdd).times ==
+        std::vector<float>{0.0f, 1.0f / 24, 2.0f / 24});
+  c.resume = true;
+  CHECK(run(c).resumed == 3);  // nothing changed: every frame kept
+
+  // Only the times change (big-endian float32 after the two counts): 0.25, 0.5, 1 s.
+  std::string bytes = read_file(cache.file);
+  const float times[3] = {0.25f, 0.5f, 1.0f};
+  for (int f = 0; f < 3; ++f) {
+    uint32_t u;
+    std::memcpy(&u, &times[f], 4);
+    for (int i = 0; i < 4; ++i) bytes[size_t(8 + 4 * f + i)] = char((u >> (24 - 8 * i)) & 0xff);
+  }
+  write_file_atomic(cache.file, bytes);
+  const SequenceResult r = run(c);
+  CHECK(r.resumed == 0);  // every frame redone: its record's time is not the input's
+  CHECK(read_point_cache_header(out, PointCacheFormat::Mdd).times ==
+        std::vector<float>{0.25f, 0.5f, 1.0f});
+  CHECK(csv_column(c.output.dir / "summary.csv", "time") ==
+        std::vector<std::string>{"0.25", "0.5", "1"});
 }
