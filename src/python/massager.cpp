@@ -227,7 +227,7 @@ class PyMassager {
       const py::iterator it = py::iter(frames);
       for (const py::handle item : it) {
         const std::string what = "frames[" + std::to_string(inputs.size()) + "]";
-        inputs.push_back(to_positions(item.cast<DoubleArray>(), what.c_str()));
+        inputs.push_back(to_positions(item, what.c_str()));
         if (inputs.back().rows() != engine.num_vertices())
           throw InputError(what + ": " + std::to_string(inputs.back().rows()) +
                            " rows, the template has " + std::to_string(engine.num_vertices()) +

@@ -91,7 +91,7 @@ void write_cache(const py::object& path_like, const py::object& frames, const py
                                : py::list(frames).cast<py::sequence>();
   const int count = static_cast<int>(py::len(seq));
   if (count < 1) throw InputError("frames: a point cache needs at least one frame");
-  const Positions first = to_positions(seq[0].cast<DoubleArray>(), "frames[0]");
+  const Positions first = to_positions(seq[0], "frames[0]");
   PointCacheTiming timing;
   timing.start = start;
   timing.sample_rate = sample_rate;
@@ -110,7 +110,7 @@ void write_cache(const py::object& path_like, const py::object& frames, const py
   write_point_cache(path, format, points, count, timing, [&](int k) {
     if (k == 0) return first;
     const std::string what = "frames[" + std::to_string(k) + "]";
-    return to_positions(seq[k].cast<DoubleArray>(), what.c_str());
+    return to_positions(seq[k], what.c_str());
   });
 }
 

@@ -33,7 +33,7 @@ py::dict figures_dict(const FitFigures& f) {
 
 class PyTracker {
  public:
-  PyTracker(const DoubleArray& template_vertices, const py::handle& triangles,
+  PyTracker(const py::handle& template_vertices, const py::handle& triangles,
             const py::kwargs& kwargs) {
     py::dict keys = kwargs.attr("copy")().cast<py::dict>();
     MassageOptions massage;
@@ -62,7 +62,7 @@ class PyTracker {
       if (!py::isinstance<py::sequence>(item) || py::len(item) != 2)
         throw InputError(who + ": expected a mesh (vertices, triangles)");
       const py::sequence mesh = item.cast<py::sequence>();
-      const Positions V = to_positions(mesh[0].cast<DoubleArray>(), (who + " vertices").c_str());
+      const Positions V = to_positions(mesh[0], (who + " vertices").c_str());
       const Triangles F = to_triangles(mesh[1], (who + " triangles").c_str());
       validate_mesh(TriMesh{V, F}, who.c_str());
       TrackFrame f;
@@ -106,7 +106,7 @@ void bind_tracker(py::module_& m) {
                         "graph fitted by robust non-rigid ICP, then Mesh Massage toward each "
                         "frame. Keyword options: the config's \"track\" keys, and massage=dict "
                         "of its \"massage\" keys.")
-      .def(py::init<const DoubleArray&, const py::handle&, const py::kwargs&>(),
+      .def(py::init<const py::handle&, const py::handle&, const py::kwargs&>(),
            py::arg("template_vertices"), py::arg("triangles"))
       .def("track", &PyTracker::track, py::arg("frames"),
            "Tracks the frames in order, an iterable of (vertices, triangles); returns one dict "
