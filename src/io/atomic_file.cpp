@@ -121,7 +121,7 @@ int open_folder(const fs::path& given, bool create) {
         errno = ENOENT;
         return -1;
       }
-      fail("cannot open folder", at, err);
+      fail(create ? "cannot create folder" : "cannot open folder", at, err);
     }
     ::close(fd);
     fd = next;

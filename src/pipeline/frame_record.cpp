@@ -290,7 +290,7 @@ std::string check_recorded_outputs(const FrameRecord& record, const fs::path& ou
       }
       if (hash != o.sha256) {
         if (tampered) *tampered = true;
-        return o.path + " changed since it was written (SHA-256 differs from its record)";
+        return o.path + " changed since it was written (SHA-256 differs)";
       }
     }
   }

@@ -179,9 +179,10 @@ std::string config_hash_problem(const Shards& s, const ShardReport& r) {
     return r.file + ": cannot hash its config again: " + e.what();
   }
   if (recomputed == h.config_hash) return "";
-  return r.file + ": its hashes.config is not the hash of its config (the config was edited "
-                  "after the shard ran, or the report is not one seqmassage wrote); run the "
-                  "shard again: seqmassage --shard " + format_shard(r.shard) + " --resume CONFIG";
+  return r.file + ": its hashes.config is not the hash of its config (the config, or the vertex "
+                  "weights file it names, changed after the shard ran, or the report is not one "
+                  "seqmassage wrote); run the shard again: seqmassage --shard " +
+         format_shard(r.shard) + " --resume CONFIG";
 }
 
 // Throws InputError when a shard ran another build, config, template or input than the first, or
