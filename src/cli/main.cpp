@@ -72,6 +72,16 @@ struct Args {
   bool quiet = false;
 };
 
+// A config file named on the command line is a regular file, checked the same way by every
+// command that takes one (running it, `config --complete`): one message, one exit code (usage).
+void check_config_path(const fs::path& config) {
+  std::error_code ec;
+  if (!fs::is_regular_file(config, ec))
+    throw UsageError{"seqmassage", "config file '" + config.string() + "' " +
+                                       (fs::exists(config, ec) ? "is not a file"
+                                                               : "does not exist")};
+}
+
 Args parse_args(int argc, char** argv) {
   Args out;
   CLI::App app(sm::cli::kHelp, "seqmassage");
@@ -115,10 +125,7 @@ Args parse_args(int argc, char** argv) {
   if (positional.size() > 1)
     fail("one config file only, got " + std::to_string(positional.size()));
   out.config = positional[0];
-  std::error_code ec;
-  if (!fs::is_regular_file(out.config, ec))
-    fail("config file '" + out.config.string() + "' " +
-         (fs::exists(out.config, ec) ? "is not a file" : "does not exist"));
+  check_config_path(out.config);
   return out;
 }
 
@@ -390,8 +397,10 @@ int main(int argc, char** argv) {
         [&] {
           if (what == "--reference" && argc == 3)
             std::cout << sm::config_reference();
-          else if (!file.empty())
+          else if (!file.empty()) {
+            check_config_path(file);
             std::cout << sm::complete_config_file(file);
+          }
           else
             throw UsageError{"seqmassage",
                              "config takes --reference (the configuration reference) or "

@@ -172,11 +172,17 @@ AnyJobOptions parse_any_config(const json& document, const fs::path& base_dir) {
 }
 
 SequenceJobOptions load_config(const fs::path& path) {
-  return parse_config(parse_json_strict(read_file(path)), fs::absolute(path).parent_path());
+  SequenceJobOptions options =
+      parse_config(parse_json_strict(read_file(path)), fs::absolute(path).parent_path());
+  options.config_file = path;
+  return options;
 }
 
 AnyJobOptions load_any_config(const fs::path& path) {
-  return parse_any_config(parse_json_strict(read_file(path)), fs::absolute(path).parent_path());
+  AnyJobOptions any =
+      parse_any_config(parse_json_strict(read_file(path)), fs::absolute(path).parent_path());
+  std::visit([&](auto& options) { options.config_file = path; }, any);
+  return any;
 }
 
 }  // namespace sm

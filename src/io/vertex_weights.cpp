@@ -1,5 +1,6 @@
 #include "io/vertex_weights.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/atomic_file.hpp"
@@ -28,16 +29,17 @@ std::pair<std::filesystem::path, std::string> split_property(const std::filesyst
 
 }  // namespace
 
-std::vector<double> parse_vertex_weights(std::string_view text, const std::string& name) {
+std::vector<double> parse_vertex_weights(std::string_view text, const std::string& name,
+                                         size_t stop_after) {
   std::vector<double> weights;
   size_t begin = 0;
-  for (int line = 1; begin <= text.size(); ++line) {
+  for (int line = 1; begin <= text.size() && weights.size() < stop_after; ++line) {
     size_t end = text.find('\n', begin);
     if (end == std::string_view::npos) end = text.size();
     const std::string_view row = text.substr(begin, end - begin);
     size_t pos = 0;
-    for (std::string_view token = next_token(row, pos); !token.empty();
-         token = next_token(row, pos)) {
+    for (std::string_view token = next_token(row, pos);
+         !token.empty() && weights.size() < stop_after; token = next_token(row, pos)) {
       double w = 0.0;
       const std::string where = name + ":" + std::to_string(line) + ": ";
       if (!parse_double(token, w))
@@ -58,8 +60,14 @@ std::vector<double> read_vertex_weights(const std::filesystem::path& spec, int v
   const auto [path, property] = split_property(spec);
   const std::string name = path.string();
   std::vector<double> weights;
+  const size_t wanted = static_cast<size_t>(std::max(vertices, 0));
   if (property.empty()) {
-    weights = parse_vertex_weights(read_file(path), name);
+    // One number past the vertex count is enough to refuse the file: the rest is not parsed.
+    weights = parse_vertex_weights(read_file(path), name, wanted + 1);
+    if (weights.size() > wanted)
+      throw InputError("massage.vertex_weights: " + spec.string() + " has more than " +
+                       std::to_string(wanted) + " weights, but the template, " + template_name +
+                       ", has " + std::to_string(vertices) + " vertices");
   } else {
     PlyVertexProperty values{property, {}};
     parse_ply(read_file(path), name, nullptr, &values);

@@ -1,5 +1,7 @@
 #include "pipeline/frame_record.hpp"
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <limits>
 
@@ -108,12 +110,16 @@ fs::path record_file(const fs::path& output_dir, const std::string& frame_name) 
 }
 
 std::string frame_config_hash(const SequenceJobOptions& config) {
+  return frame_config_hash(config, version_info());
+}
+
+std::string frame_config_hash(const SequenceJobOptions& config, const json& versions) {
   json j = to_json(config);
   for (const char* key : {"threads", "frames_in_flight", "shard", "resume"}) j.erase(key);
   j["input"].erase("range");
   j["output"].erase("timings");
   j["output"].erase("dir");  // a moved output folder keeps its records
-  std::string text = j.dump() + "\n" + version_info().dump();
+  std::string text = j.dump() + "\n" + versions.dump();
   // The weights read from massage.vertex_weights: a changed file is a changed config.
   const std::vector<double>& w = config.massage.vertex_weights;
   if (!w.empty()) text.append(reinterpret_cast<const char*>(w.data()), w.size() * sizeof(double));
@@ -241,9 +247,33 @@ std::optional<FrameRecord> read_frame_record(const fs::path& file, std::string* 
   }
 }
 
+std::string confinement_problem(const fs::path& dir, const std::string& path) {
+  const fs::path p(path);
+  bool outside = path.empty() || p.has_root_name() || p.has_root_directory();
+  for (const fs::path& part : p) outside = outside || part == "..";
+  if (outside)
+    return "the record names '" + path + "', which is not a path inside the output folder";
+  fs::path at = dir;
+  for (const fs::path& part : p) {
+    if (part == "." || part.empty()) continue;
+    at /= part;
+    struct stat st {};
+    if (::lstat(at.c_str(), &st) != 0) return "";
+    if (S_ISLNK(st.st_mode))
+      return path + ": " + at.lexically_relative(dir).generic_string() +
+             " is a symbolic link (an output is a file the run wrote, never a link)";
+  }
+  return "";
+}
+
 std::string check_recorded_outputs(const FrameRecord& record, const fs::path& output_dir,
-                                   bool check_content) {
+                                   bool check_content, bool* tampered) {
+  if (tampered) *tampered = false;
   for (const RecordedOutput& o : record.outputs) {
+    if (std::string problem = confinement_problem(output_dir, o.path); !problem.empty()) {
+      if (tampered) *tampered = true;
+      return problem;
+    }
     const fs::path file = output_dir / fs::path(o.path);
     std::error_code ec;
     const uintmax_t size = fs::file_size(file, ec);
@@ -258,7 +288,10 @@ std::string check_recorded_outputs(const FrameRecord& record, const fs::path& ou
       } catch (const IoError& e) {
         return e.what();
       }
-      if (hash != o.sha256) return o.path + " changed since it was written (SHA-256 differs)";
+      if (hash != o.sha256) {
+        if (tampered) *tampered = true;
+        return o.path + " changed since it was written (SHA-256 differs)";
+      }
     }
   }
   return "";

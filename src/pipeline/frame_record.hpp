@@ -46,6 +46,9 @@ std::filesystem::path record_file(const std::filesystem::path& output_dir,
 /// config (to_json) without the keys that do not (threads, frames_in_flight, input.range,
 /// output.dir, output.timings, shard, resume), and the program's version_info().
 std::string frame_config_hash(const SequenceJobOptions& config);
+/// The same with the versions a report names (`seqmassage merge` recomputes a shard's hash from
+/// its report's config and versions).
+std::string frame_config_hash(const SequenceJobOptions& config, const nlohmann::json& versions);
 
 /// SHA-256 of the template's positions and triangles (exact bytes).
 std::string template_hash(const TriMesh& templ);
@@ -63,9 +66,18 @@ FrameRecord frame_record_from_json(const nlohmann::json& json);
 std::optional<FrameRecord> read_frame_record(const std::filesystem::path& file,
                                              std::string* problem = nullptr);
 
+/// Why `path` (as a record names it) is not a file inside `dir` reached through no symbolic link:
+/// absolute, with "..", or a link at one of its parts; "" if it is fine or missing.
+std::string confinement_problem(const std::filesystem::path& dir, const std::string& path);
+
 /// "" if every output of `record` is in `output_dir` with its recorded size and, with
-/// `check_content`, its SHA-256; else what is wrong with the first one that is not.
+/// `check_content`, its SHA-256; else what is wrong with the first one that is not. A recorded
+/// path must stay inside `output_dir` (relative, no "..") and name a regular file reached through
+/// no symbolic link: a record or a file edited to point elsewhere is refused, never read.
+/// `tampered` (if given) is set when the problem is not a missing file but a file that is not
+/// what its record says (content, link, path outside).
 std::string check_recorded_outputs(const FrameRecord& record,
-                                   const std::filesystem::path& output_dir, bool check_content);
+                                   const std::filesystem::path& output_dir, bool check_content,
+                                   bool* tampered = nullptr);
 
 }  // namespace sm

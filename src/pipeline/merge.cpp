@@ -7,6 +7,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/gltf_load.hpp"
+#include "io/vertex_weights.hpp"
 #include "io/options_json.hpp"
 #include "mesh/errors.hpp"
 #include "pipeline/frame_output.hpp"
@@ -119,6 +120,8 @@ std::vector<ShardReport> find_shard_reports(const fs::path& dir) {
                      "); remove those of the split you do not want to merge");
   }
   for (ShardReport& s : found) {
+    if (std::string link = confinement_problem(dir, s.file); !link.empty())
+      throw InputError("'" + (dir / s.file).string() + "': refusing to read it: " + link);
     try {
       s.report = json::parse(read_file(dir / s.file));
       const json& section = s.report.at("shard");
@@ -160,10 +163,36 @@ Shards find_shards(const fs::path& output_dir) {
   return s;
 }
 
-// Throws InputError when a shard ran another build, config, template or input than the first.
+// Why the config hash of shard report `r` is not the one of its config ("" if it is): its config
+// and versions hashed again as frame_config_hash does (with the vertex weights its config names).
+std::string config_hash_problem(const Shards& s, const ShardReport& r) {
+  const ReportHeader h = report_header_from_json(r.report);
+  std::string recomputed;
+  try {
+    SequenceJobOptions config;
+    read_options(h.config, config, s.dir);
+    if (!config.massage.vertex_weights_file.empty())
+      config.massage.vertex_weights = read_vertex_weights(
+          config.massage.vertex_weights_file, h.templ.value("vertices", 0), "the template");
+    recomputed = frame_config_hash(config, h.versions);
+  } catch (const Error& e) {
+    return r.file + ": cannot hash its config again: " + e.what();
+  }
+  if (recomputed == h.config_hash) return "";
+  return r.file + ": its hashes.config is not the hash of its config (the config, or the vertex "
+                  "weights file it names, changed after the shard ran, or the report is not one "
+                  "seqmassage wrote); run the shard again: seqmassage --shard " +
+         format_shard(r.shard) + " --resume CONFIG";
+}
+
+// Throws InputError when a shard ran another build, config, template or input than the first, or
+// when a report's config hash is not its config's.
 void verify_same_job(const Shards& s) {
   const ShardReport& ref = s.reports.front();
   std::vector<std::string> problems;
+  for (const ShardReport& r : s.reports)
+    if (std::string problem = config_hash_problem(s, r); !problem.empty())
+      problems.push_back(problem);
   for (const ShardReport& r : s.reports) {
     if (&r == &ref) continue;
     const ReportHeader h = report_header_from_json(r.report);
@@ -234,18 +263,27 @@ void verify_blocks(Shards& s, const std::vector<int>& selected,
   }
 }
 
-// Why frame `f`'s record cannot be merged, or "" (then `record` holds it).
+// Why frame `f`'s record cannot be merged, or "" (then `record` holds it). `tampered`: an
+// output (or the record) is not what the shard wrote: changed, a link, or a path outside.
 std::string record_problem(const Shards& s, int f, const std::string& name,
-                           std::optional<FrameRecord>& record) {
+                           std::optional<FrameRecord>& record, bool& tampered) {
+  tampered = false;
+  const fs::path file = record_file(s.dir, name);
+  if (std::string link = confinement_problem(s.dir, file.lexically_relative(s.dir).string());
+      !link.empty()) {
+    tampered = true;
+    return link;
+  }
   std::string problem;
-  record = read_frame_record(record_file(s.dir, name), &problem);
+  record = read_frame_record(file, &problem);
   if (!record) return problem;
   if (record->config_hash != s.header.config_hash) return "its record is of another config";
   if (record->template_hash != s.header.templ.value("hash", ""))
     return "its record is of another template";
   if (record->summary.frame != f || record->summary.file != name)
     return "its record is another frame's";
-  return check_recorded_outputs(*record, s.dir, false);
+  // The content too, as --resume checks it: merge publishes these bytes.
+  return check_recorded_outputs(*record, s.dir, true, &tampered);
 }
 
 // Every selected frame's record, of this job, with its outputs: their rows into `result`, their
@@ -255,11 +293,19 @@ void verify_records(const Shards& s, const std::vector<int>& selected,
                     std::vector<std::string>& problems) {
   std::vector<int> bad_frames;
   std::string first_bad;
+  std::map<int, std::string> shard_of;  // frame -> its shard's report file
+  for (const ShardReport& r : s.reports)
+    for (const auto& [index, frame_name] : r.frames) shard_of[index] = r.file;
+  int tampered_shown = 0;
   for (int f : selected) {
     const auto name = s.names.find(f);
     if (name == s.names.end()) continue;  // in a missing shard, reported already
     std::optional<FrameRecord> r;
-    if (std::string problem = record_problem(s, f, name->second, r); !problem.empty()) {
+    bool tampered = false;
+    if (std::string problem = record_problem(s, f, name->second, r, tampered); !problem.empty()) {
+      if (tampered && tampered_shown++ < 20)
+        problems.push_back(shard_of[f] + ": " + frame_label(f, name->second, std::nullopt) +
+                           ": refusing to publish " + problem);
       bad_frames.push_back(f);
       if (first_bad.empty())
         first_bad = frame_label(f, name->second, std::nullopt) + ": " + problem;

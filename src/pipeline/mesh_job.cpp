@@ -15,6 +15,7 @@
 #include "mesh/errors.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
+#include "pipeline/input_clash.hpp"
 #include "pipeline/mesh_report.hpp"
 #include "pipeline/output_lock.hpp"
 #include "pipeline/run_text.hpp"
@@ -70,21 +71,16 @@ std::string alignment_warning(const MeshJobPlan& plan) {
 
 void check_outputs(const MeshJobPlan& plan) {
   const MeshJobOptions& c = plan.config;
-  auto canonical = [](const fs::path& p) {
-    std::error_code ec;  // a path that cannot be resolved is compared as written
-    const fs::path resolved = fs::weakly_canonical(p, ec);
-    return (ec ? fs::absolute(p) : resolved).lexically_normal();
-  };
-  std::set<fs::path> inputs = {canonical(c.input.mesh)};
-  if (!c.input.reference.empty()) inputs.insert(canonical(c.input.reference));
-  if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
+  std::vector<ReadFile> inputs = {{"the config", c.config_file},
+                                  {"input.mesh", c.input.mesh},
+                                  {"input.reference", c.input.reference},
+                                  {"template.mesh", c.templ.mesh}};
+  if (!c.massage.vertex_weights_file.empty())
+    inputs.push_back({"massage.vertex_weights", weights_file_read(c.massage.vertex_weights_file)});
   std::vector<fs::path> outputs = {plan.output_mesh, c.output.dir / "measures.csv",
                                    c.output.dir / "report.json"};
   if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / "triangles.csv");
-  for (const fs::path& out : outputs)
-    if (inputs.count(canonical(out)))
-      throw ConfigError("output.dir: writing " + out.string() +
-                        " would overwrite an input file; choose another output folder");
+  refuse_overwriting_inputs(inputs, outputs);
 }
 
 std::string output_text(const MeshJobPlan& plan, const Positions& V) {

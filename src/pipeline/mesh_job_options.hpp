@@ -103,6 +103,9 @@ struct MeshJobOptions {
   MassageOptions massage;  ///< defaults by job: default_massage_options
   MeasureOptions measures;
   int threads = 0;  ///< worker threads, 0 = one per core
+  /// The file the options were read from (load_config; empty from code): an input the outputs
+  /// must not overwrite. Not a config key.
+  std::filesystem::path config_file;
 };
 
 template <>

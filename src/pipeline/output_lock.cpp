@@ -15,6 +15,7 @@
 #include <regex>
 #include <thread>
 
+#include "io/atomic_file.hpp"
 #include "mesh/errors.hpp"
 
 namespace sm {
@@ -129,10 +130,15 @@ namespace {
 
 // Opens and flocks `file` (exclusive or shared), retrying while another holder removes it or
 // holds it for a moment. Returns the descriptor; throws IoError when it stays held.
-int take(const fs::path& dir, const fs::path& file, bool exclusive, bool& unsupported) {
+// The lock file is opened in the output folder held open (openat), never through a link, and
+// refused when it has other names (a hard link planted there would make its truncation and
+// rewriting another file's).
+int take(const fs::path& dir, int dir_fd, const fs::path& file, bool exclusive,
+         bool& unsupported) {
+  const std::string name = file.filename().string();
   for (int attempt = 0;; ++attempt) {
-    const int fd =
-        ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+    const int fd = ::openat(dir_fd, name.c_str(),
+                            O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
     if (fd < 0)
       throw IoError("cannot create the lock file '" + file.string() + "': " + std::strerror(errno) +
                     (errno == ELOOP ? " (it is a symbolic link: remove it)" : ""));
@@ -140,6 +146,12 @@ int take(const fs::path& dir, const fs::path& file, bool exclusive, bool& unsupp
     if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
       ::close(fd);
       throw IoError("lock file '" + file.string() + "' is not a regular file: remove it");
+    }
+    if (st.st_nlink > 1) {
+      ::close(fd);
+      throw IoError("lock file '" + file.string() + "' has " + std::to_string(st.st_nlink) +
+                    " links (another name for the same file exists, a hard link): refusing to "
+                    "write it; remove it");
     }
     if (::flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) == 0) {
       if (is_current(fd, file)) return fd;
@@ -163,17 +175,15 @@ int take(const fs::path& dir, const fs::path& file, bool exclusive, bool& unsupp
 }  // namespace
 
 OutputLock lock_output_folder(const fs::path& dir, const ShardOptions& shard) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw IoError("cannot create folder '" + dir.string() + "': " + ec.message());
   const std::string host = this_host();
   const long self = static_cast<long>(::getpid());
   OutputLock lock;
+  lock.folder_ = std::make_unique<OutputFolder>(dir);  // created if missing
   std::vector<std::pair<fs::path, bool>> wanted = {{dir / lock_file_name({}), !shard.sharded()}};
   if (shard.sharded()) wanted.emplace_back(dir / lock_file_name(shard), true);
   for (const auto& [file, exclusive] : wanted) {
     bool unsupported = false;
-    const int fd = take(dir, file, exclusive, unsupported);
+    const int fd = take(dir, lock.folder_->fd(), file, exclusive, unsupported);
     const std::optional<LockHolder> before = parse_holder(read_all(fd));
     if (unsupported) {
       // No flock here (some network file systems): the content is all there is to judge by.
@@ -206,7 +216,9 @@ OutputLock lock_output_folder(const fs::path& dir, const ShardOptions& shard) {
 }
 
 OutputLock::OutputLock(OutputLock&& other) noexcept
-    : held_(std::move(other.held_)), warnings_(std::move(other.warnings_)) {
+    : held_(std::move(other.held_)),
+      warnings_(std::move(other.warnings_)),
+      folder_(std::move(other.folder_)) {
   other.held_.clear();
 }
 
@@ -215,6 +227,7 @@ OutputLock& OutputLock::operator=(OutputLock&& other) noexcept {
     release();
     held_ = std::move(other.held_);
     warnings_ = std::move(other.warnings_);
+    folder_ = std::move(other.folder_);
     other.held_.clear();
   }
   return *this;
@@ -229,7 +242,12 @@ void OutputLock::release() {
   for (auto it = held_.rbegin(); it != held_.rend(); ++it) {
     // A shared lock is removed by its last holder: the one that can make it exclusive.
     if (it->exclusive || ::flock(it->fd, LOCK_EX | LOCK_NB) == 0) {
-      if (is_current(it->fd, it->file)) ::unlink(it->file.c_str());
+      if (is_current(it->fd, it->file)) {
+        if (folder_)
+          ::unlinkat(folder_->fd(), it->file.filename().c_str(), 0);
+        else
+          ::unlink(it->file.c_str());
+      }
     }
     ::close(it->fd);
   }

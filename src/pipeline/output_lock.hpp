@@ -8,9 +8,11 @@
 /// - shard I of N holds `.seqmassage-shard-I-of-N.lock` exclusively and `.seqmassage.lock` shared,
 ///   so the shards of one job run side by side, but not with a whole run or a merge of the folder.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.hpp"
 #include "pipeline/shard.hpp"
 
 namespace sm {
@@ -33,6 +35,9 @@ class OutputLock;
 /// IoError when another process holds one, naming the lock file and its holder (host, pid, since
 /// when; for the folder's lock held by shards, the shards' holders), or when the lock file cannot
 /// be created or locked. A lock file left by a holder that ended is taken over (see warnings()).
+/// The lock files are opened in the folder with O_NOFOLLOW, and one with another name (a hard
+/// link) is refused. While the lock is held, `dir` is an OutputFolder: nothing written below it
+/// follows a link (io/atomic_file.hpp).
 OutputLock lock_output_folder(const std::filesystem::path& dir, const ShardOptions& shard = {});
 
 /// The locks of one process on one output folder, held until destruction, which unlocks them and
@@ -64,6 +69,7 @@ class OutputLock {
   friend OutputLock lock_output_folder(const std::filesystem::path&, const ShardOptions&);
   std::vector<Held> held_;
   std::vector<std::string> warnings_;
+  std::unique_ptr<OutputFolder> folder_;
 };
 
 }  // namespace sm

@@ -115,14 +115,13 @@ void write_record(const SequencePlan& plan, const Work& w) {
 // encoded bytes.
 void write_frame_files(const SequencePlan& plan, Work& w) {
   const fs::path& out = plan.config.output.dir;
-  std::error_code ec;
-  fs::remove(record_file(out, plan.source->name(w.index)), ec);
+  remove_output_file(record_file(out, plan.source->name(w.index)));
   for (OutputFrame& part : w.outputs) {
     for (const auto& [file, bytes] : part.files) {
       if (w.has_output)
         write_file_atomic(out / file, bytes);
       else
-        fs::remove(out / file, ec);
+        remove_output_file(out / file);
     }
     part.files.clear();
     part.files.shrink_to_fit();
@@ -168,10 +167,8 @@ class SequenceRun {
     for (const char* dir : {".", "records", "input", "ground_truth"})
       remove_stale_temporaries(out / dir);
     for (const std::string& name :
-         {summary_file_name(plan_.config.shard), report_file_name(plan_.config.shard)}) {
-      std::error_code ec;
-      fs::remove(out / name, ec);
-    }
+         {summary_file_name(plan_.config.shard), report_file_name(plan_.config.shard)})
+      remove_output_file(out / name);
     plan_.source->prepare();
     for (const auto& output : plan_.outputs) {
       for (const fs::path& dir : output->folders()) remove_stale_temporaries(dir);

@@ -268,6 +268,9 @@ struct SequenceJobOptions {
   ShardOptions shard;
   bool resume = false;
   DistanceOptions measures = default_sequence_measures();
+  /// The file the options were read from (load_config; empty from code): an input the outputs
+  /// must not overwrite. Not a config key.
+  std::filesystem::path config_file;
 };
 
 template <>

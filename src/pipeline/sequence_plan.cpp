@@ -17,6 +17,7 @@
 #include "pipeline/frame_output.hpp"
 #include "pipeline/frame_processor.hpp"
 #include "pipeline/frame_record.hpp"
+#include "pipeline/input_clash.hpp"
 #include "pipeline/report.hpp"
 #include "pipeline/run_text.hpp"
 #include "pipeline/shard.hpp"
@@ -45,30 +46,30 @@ void check_frames(const SequencePlan& plan, tbb::task_arena& arena) {
     if (!problem.empty()) throw InputError(problem);
 }
 
-// Refuses an output file that is one of the inputs.
+// Refuses an output file that is one of the inputs: every file the run reads (the config, the
+// frames or cache and its mesh, the glTF asset with its buffers and images, the template, the
+// weights) against every file it writes, by identity.
 void check_outputs(const SequencePlan& plan) {
   const SequenceJobOptions& c = plan.config;
-  std::set<fs::path> inputs;
-  auto canonical = [](const fs::path& p) {
-    std::error_code ec;  // a path that cannot be resolved is compared as written
-    const fs::path resolved = fs::weakly_canonical(p, ec);
-    return (ec ? fs::absolute(p) : resolved).lexically_normal();
-  };
+  std::vector<ReadFile> inputs = {{"the config", c.config_file},
+                                  {"template.mesh", c.templ.mesh}};
+  if (!c.massage.vertex_weights_file.empty())
+    inputs.push_back({"massage.vertex_weights", weights_file_read(c.massage.vertex_weights_file)});
   std::vector<int> read = plan.run_frames;
   if (plan.template_frame >= 0) read.push_back(plan.template_frame);
-  for (const fs::path& file : plan.source->files(read)) inputs.insert(canonical(file));
-  if (!c.templ.mesh.empty()) inputs.insert(canonical(c.templ.mesh));
+  for (const fs::path& file : plan.source->files(read)) inputs.push_back({"the input", file});
   std::vector<fs::path> outputs;
   for (const auto& output : plan.outputs)
     for (fs::path& file : output->files(plan.run_frames)) outputs.push_back(std::move(file));
   outputs.push_back(c.output.dir / summary_file_name(c.shard));
   outputs.push_back(c.output.dir / report_file_name(c.shard));
+  if (c.shard.sharded()) {  // what merge writes from the shards
+    outputs.push_back(c.output.dir / summary_file_name({}));
+    outputs.push_back(c.output.dir / report_file_name({}));
+  }
   for (int index : plan.run_frames)
     outputs.push_back(record_file(c.output.dir, plan.source->name(index)));
-  for (const fs::path& out : outputs)
-    if (inputs.count(canonical(out)))
-      throw ConfigError("output.dir: writing " + out.string() +
-                        " would overwrite an input file; choose another output folder");
+  refuse_overwriting_inputs(inputs, outputs);
 }
 
 }  // namespace

@@ -5,8 +5,10 @@
 
 #include <catch2/catch.hpp>
 #include <fstream>
+#include <functional>
 
 #include "io/atomic_file.hpp"
+#include "mesh/errors.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace sm;
@@ -61,4 +63,72 @@ TEST_CASE("remove_stale_temporaries removes a dead writer's temporaries only") {
   CHECK(fs::exists(dir / ("frame.obj.otherhost-" + std::to_string(child) + ".4" + suffix)));
   CHECK(fs::exists(dir / "frame.obj"));
   CHECK(remove_stale_temporaries(dir / "missing") == 0);
+}
+
+TEST_CASE("temporaries have unpredictable names, created exclusively beside the destination",
+          "[io][trust]") {
+  test::TempDir dir;
+  std::vector<std::string> names;
+  {
+    AtomicFileWriter a(dir / "a.txt"), b(dir / "a.txt");
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+      names.push_back(entry.path().filename().string());
+  }
+  REQUIRE(names.size() == 2);
+  CHECK(names[0] != names[1]);
+  const std::string stem = "a.txt." + temporary_owner() + ".";
+  for (const std::string& name : names) {
+    INFO(name);
+    REQUIRE(name.size() == stem.size() + 16 + kTempSuffix.size());
+    CHECK(name.compare(0, stem.size(), stem) == 0);
+    CHECK(name.substr(stem.size(), 16).find_first_not_of("0123456789abcdef") == std::string::npos);
+  }
+  CHECK(count_files(dir.path()) == 0);  // both abandoned: removed
+  // A dead writer's temporary of this form is cleaned like the older ones.
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  const std::string own = temporary_owner();
+  const std::string dead = own.substr(0, own.rfind('-')) + "-" + std::to_string(child);
+  touch(dir / ("a.txt." + dead + ".0123456789abcdef" + std::string(kTempSuffix)));
+  CHECK(remove_stale_temporaries(dir.path()) == 1);
+}
+
+TEST_CASE("below an output folder no write or removal follows a link", "[io][trust]") {
+  test::TempDir dir;
+  fs::create_directories(dir / "elsewhere");
+  touch(dir / "elsewhere/victim.txt");
+  const OutputFolder out(dir / "out");
+  fs::create_symlink(dir / "elsewhere", dir / "out/frames");
+  const auto refused = [&](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string link_message = "refusing to write into '" +
+                                   fs::absolute(dir / "out/frames").lexically_normal().string() +
+                                   "': it is a symbolic link";
+  CHECK(refused([&] { write_file_atomic(dir / "out/frames/a.obj", "x"); })
+            .rfind(link_message, 0) == 0);
+  CHECK(refused([&] { remove_output_file(dir / "out/frames/victim.txt"); })
+            .rfind(link_message, 0) == 0);
+  CHECK(remove_stale_temporaries(dir / "out/frames") == 0);
+  CHECK(fs::exists(dir / "elsewhere/victim.txt"));
+  CHECK(!fs::exists(dir / "elsewhere/a.obj"));
+  // Real sub-folders are created on the way; a link at the file's own name is replaced.
+  write_file_atomic(dir / "out/records/deep/r.json", "{}");
+  CHECK(read_file(dir / "out/records/deep/r.json") == "{}");
+  fs::create_symlink(dir / "elsewhere/victim.txt", dir / "out/summary.csv");
+  write_file_atomic(dir / "out/summary.csv", "frame\n");
+  CHECK(!fs::is_symlink(dir / "out/summary.csv"));
+  CHECK(read_file(dir / "elsewhere/victim.txt") == "partial");
+  fs::create_symlink(dir / "elsewhere/victim.txt", dir / "out/report.json");
+  remove_output_file(dir / "out/report.json");
+  CHECK(!fs::exists(fs::symlink_status(dir / "out/report.json")));
+  CHECK(fs::exists(dir / "elsewhere/victim.txt"));
 }

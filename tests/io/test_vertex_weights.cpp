@@ -47,3 +47,30 @@ TEST_CASE("vertex weights from a file: count against the template, PLY property"
   CHECK(test::error_of<InputError>([&] { read_vertex_weights(dir / "bad.ply#quality", 3, "t"); }) ==
         (dir / "bad.ply").string() + ": vertex 1: quality = 2 is not a weight in [0, 1]");
 }
+
+TEST_CASE("a weights file stops at the first number past the template's vertex count",
+          "[io][weights]") {
+  // Everything after the count's first extra number is not parsed: a bad token, or a value
+  // outside [0, 1], past it is never seen.
+  CHECK(parse_vertex_weights("1 0.5 0 0.25 abc 7", "w.txt", 4) ==
+        std::vector<double>{1.0, 0.5, 0.0, 0.25});
+  CHECK(parse_vertex_weights("1\n0.5\n0\nnot numbers at all", "w.txt", 3) ==
+        std::vector<double>{1.0, 0.5, 0.0});
+  test::TempDir dir("vertex_weights_long");
+  // 64 vertices and 100000 more numbers, then text that is no number: refused for the count.
+  std::string text;
+  for (int i = 0; i < 100064; ++i) text += "0.5\n";
+  text += "garbage\n";
+  write_file_atomic(dir / "w.txt", text);
+  CHECK(test::error_of<InputError>([&] { read_vertex_weights(dir / "w.txt", 64, "t.obj"); }) ==
+        "massage.vertex_weights: " + (dir / "w.txt").string() +
+            " has more than 64 weights, but the template, t.obj, has 64 vertices");
+  // Exactly the count is accepted, and fewer keep their message.
+  std::string exact;
+  for (int i = 0; i < 64; ++i) exact += "1 ";
+  write_file_atomic(dir / "exact.txt", exact);
+  CHECK(read_vertex_weights(dir / "exact.txt", 64, "t.obj").size() == 64);
+  CHECK(test::error_of<InputError>([&] { read_vertex_weights(dir / "exact.txt", 65, "t.obj"); }) ==
+        "massage.vertex_weights: " + (dir / "exact.txt").string() +
+            " has 64 weights, but the template, t.obj, has 65 vertices");
+}
