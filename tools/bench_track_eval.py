@@ -12,7 +12,7 @@ per frame.
 Per frame, in mean edge lengths of the template: the error of every vertex against its truth
 (mean, p95, max), split into its part along the truth surface's normal and its tangential part
 (mean, p95), the mean motion of the truth since the previous frame, folded triangles (normal
-opposite to the truth's), and, with the seqmassage module, the Metro-style distances tracked ->
+opposite to the same triangle's at the true positions), and, with the seqmassage module, the Metro-style distances tracked ->
 raw frame and raw frame -> tracked (mean, max; seqmassage.distances). Frame 0 is the template's
 own frame; the closing line averages frames 1..N-1.
 """
@@ -112,8 +112,7 @@ def score(dataset, tracked, with_distances=True):
         err = np.linalg.norm(e, axis=1) / unit
         en = np.abs(en) / unit
         et = et / unit
-        truth_vn = normal[TF].sum(axis=1)
-        folded = int((np.einsum("ij,ij->i", face_normals(P, TF), truth_vn) < 0).sum())
+        folded = int((np.einsum("ij,ij->i", face_normals(P, TF), face_normals(truth, TF)) < 0).sum())
         row.update(status="ok", mean=err.mean(), p95=np.percentile(err, 95), max=err.max(),
                    normal_mean=en.mean(), normal_p95=np.percentile(en, 95),
                    tangential_mean=et.mean(), tangential_p95=np.percentile(et, 95),
