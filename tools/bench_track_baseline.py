@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_track_eval import read_obj  # noqa: E402
+from bench_track_eval import frame_count, read_obj  # noqa: E402
 
 import seqmassage  # noqa: E402
 
@@ -45,8 +45,7 @@ def main():
             options[key] = json.loads(value)
         except json.JSONDecodeError:
             options[key] = value
-    meta = json.load(open(os.path.join(a.dataset, "meta.json")))
-    count = meta["source_frames"]["count"]
+    count = frame_count(a.dataset)
     if a.frames:
         count = min(count, a.frames)
     T, F, _ = read_obj(os.path.join(a.dataset, "template.obj"))

@@ -75,6 +75,20 @@ def tracked_files(dataset, tracked, count):
             for n in names]
 
 
+def frame_count(dataset):
+    """Frames of the data set: meta.json's count, or (while it is being built) the frames whose
+    raw and truth files are both written."""
+    meta = os.path.join(dataset, "meta.json")
+    if os.path.exists(meta):
+        with open(meta) as f:
+            return json.load(f)["source_frames"]["count"]
+    k = 0
+    while all(os.path.exists(os.path.join(dataset, d, f"frame_{k:04d}.obj"))
+              for d in ("raw", "truth")):
+        k += 1
+    return k
+
+
 def load_distances():
     try:
         import seqmassage  # noqa: F401
@@ -84,8 +98,7 @@ def load_distances():
 
 
 def score(dataset, tracked, with_distances=True):
-    meta = json.load(open(os.path.join(dataset, "meta.json")))
-    count = meta["source_frames"]["count"]
+    count = frame_count(dataset)
     TV, TF, _ = read_obj(os.path.join(dataset, "template.obj"))
     unit = mean_edge_length(TV, TF)
     distances = load_distances() if with_distances else None
