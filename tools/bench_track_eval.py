@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Scores tracked frames against the truth of a tracking-benchmark data set.
 
-    bench_track_eval.py DATASET TRACKED [--csv FILE] [--name NAME] [--no-distances]
+    bench_track_eval.py DATASET TRACKED [--csv FILE] [--frames N] [--name NAME] [--no-distances]
 
 DATASET is a folder written by tools/gpl/bench_track_remesh (template.obj, raw/frame_NNNN.obj,
 truth/frame_NNNN.obj, meta.json; docs/tracking-benchmark.md). TRACKED is a folder of OBJ frames
@@ -97,8 +97,8 @@ def load_distances():
         return None
 
 
-def score(dataset, tracked, with_distances=True):
-    count = frame_count(dataset)
+def score(dataset, tracked, with_distances=True, frames=None):
+    count = frame_count(dataset) if not frames else min(frames, frame_count(dataset))
     TV, TF, _ = read_obj(os.path.join(dataset, "template.obj"))
     unit = mean_edge_length(TV, TF)
     distances = load_distances() if with_distances else None
@@ -173,8 +173,9 @@ def main():
     ap.add_argument("--no-distances", action="store_true",
                     help="skip tracked <-> raw distances (no seqmassage module needed)")
     ap.add_argument("--json", help="write the closing summary here")
+    ap.add_argument("--frames", type=int, help="score only the first N frames")
     a = ap.parse_args()
-    rows, unit = score(a.dataset, a.tracked, not a.no_distances)
+    rows, unit = score(a.dataset, a.tracked, not a.no_distances, a.frames)
     cols = [c for c in COLUMNS if any(c in r for r in rows)]
     print(f"# {a.dataset}: errors in mean edge lengths of the template ({unit:.6g})")
     print("| " + " | ".join(cols) + " |")
