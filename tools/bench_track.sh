@@ -13,7 +13,7 @@
 # Environment: SEQMASSAGE_DATA (default ../shared/data beside the checkout), BUILD (build
 # folder, default build; the remesher is configured there with SEQMASSAGE_BUILD_GPL_BENCH=ON),
 # CRANE_FRAMES (default 175), SEED (default 1), BASELINE_OPTIONS (massage key=value pairs for
-# the baseline, e.g. 'iterations=30 distance_term="plane"').
+# the baseline, e.g. 'iterations=30 distance_term=plane closest_points=exact').
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 data="${SEQMASSAGE_DATA:-$root/../shared/data}"
@@ -30,7 +30,7 @@ shift 2
 remesher() {
   if [ ! -x "$build/tools/bench_track_remesh" ]; then
     cmake -S "$root" -B "$build" -DSEQMASSAGE_BUILD_GPL_BENCH=ON >/dev/null
-    cmake --build "$build" -j2 --target bench_track_remesh
+    cmake --build "$build" -j2 --target bench_track_remesh >&2
   fi
   echo "$build/tools/bench_track_remesh"
 }
