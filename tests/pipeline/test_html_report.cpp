@@ -133,6 +133,13 @@ TEST_CASE("a run's report.html holds its frames, within the budget, the same for
   REQUIRE(data["player"].is_object());
   CHECK(data["player"]["frames"] == std::vector<int>{0, 1, 2, 3, 4, 5});
   const int n = data["player"]["vertices"];
+  // The histogram counts every triangle of every frame once per side.
+  for (const char* side : {"before", "after"}) {
+    const std::vector<long long> counts = data["histogram"][side];
+    long long total = 0;
+    for (long long k : counts) total += k;
+    CHECK(total == 6 * data["player"]["triangles"].get<long long>());
+  }
   // Frame 3's input positions, decoded from the page, match the input OBJ within the box's step.
   const std::string q = base64_decode(element_text(page, "b-i3"));
   REQUIRE(q.size() == size_t(n) * 6);

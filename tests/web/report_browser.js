@@ -81,6 +81,17 @@ async function main() {
     const hasPlayer = await page.evaluate(() => !!document.querySelector('.player-view canvas'));
     check(hasPlayer, 'the page has the 3D player');
     if (hasPlayer) {
+      // It plays on opening; pause it, back to the first frame.
+      const playing = await page.evaluate(() => {
+        const b = document.querySelector('.player-controls button.play');
+        const was = b.textContent === 'Pause';
+        if (was) b.click();
+        const s = document.querySelector('.player-controls input[type=range]');
+        s.value = '0';
+        s.dispatchEvent(new Event('input'));
+        return was;
+      });
+      check(playing, 'the player plays on opening');
       await nextFrames(page);
       const first = await canvasStats(page);
       check(first.variance > 20, `the WebGL canvas is not blank (pixel variance ${first.variance.toFixed(1)})`);

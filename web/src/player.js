@@ -228,16 +228,20 @@ function create(section, opts) {
   window.addEventListener('resize', () => { dirty = true; });
   slider.addEventListener('input', () => setFrame(Number(slider.value)));
   mode.addEventListener('change', () => setMode(mode.value));
-  play.addEventListener('click', () => {
-    playing = !playing;
+  function setPlaying(on) {
+    playing = on && K > 1;
     play.textContent = playing ? 'Pause' : 'Play';
     clock = 0;
-  });
+  }
+  play.addEventListener('click', () => setPlaying(!playing));
+  slider.addEventListener('pointerdown', () => setPlaying(false));
   setFrame(0);
   setMode('checker');
   render();
+  // Playing from the start: the checker slides on the left and holds still on the right.
+  setPlaying(true);
   requestAnimationFrame(tick);
-  return { setFrame, setMode, render, frames: K, canvas };
+  return { setFrame, setMode, setPlaying, render, frames: K, canvas };
 }
 
 window.SeqmassagePlayer = { create };
