@@ -125,6 +125,7 @@ TEST_CASE("frames over the budget are kept evenly spaced, first and last include
 TEST_CASE("a run's report.html holds its frames, within the budget, the same for any thread count") {
   test::TempDir dir("html_report");
   SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(6));
+  c.output.html = true;
   c.threads = 1;
   const SequenceResult r1 = run_sequence_job(plan_sequence_job(c), {});
   const std::string page = read_file(dir / "out/report.html");
