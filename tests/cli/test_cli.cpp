@@ -302,7 +302,8 @@ TEST_CASE("a synthetic input runs without outside data and keeps the ground trut
     "output": {"dir": "demo"}, "massage": {"iterations": 8}})");
   const test::CliRun r = test::run_cli(dir.path(), "demo.json");
   REQUIRE(r.code == 0);
-  CHECK(r.out == "results: demo/ (frames/, records/, summary.csv, report.json)\n");
+  CHECK(r.out == "results: demo/ (frames/, report_data/, records/, report.html, summary.csv, "
+                 "report.json)\n");
   CHECK(fs::exists(dir / "demo/input/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/ground_truth/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/frames/frame_0003.obj"));
@@ -325,7 +326,8 @@ TEST_CASE("a glTF animation runs from the command line to sequence.glb") {
 
   r = test::run_cli(dir.path(), "job.json");
   REQUIRE(r.code == 0);
-  CHECK(r.out == "results: out/ (positions/, sequence.glb, records/, summary.csv, report.json)\n");
+  CHECK(r.out == "results: out/ (positions/, sequence.glb, report_data/, records/, report.html, "
+                 "summary.csv, report.json)\n");
   CHECK_THAT(r.err, Catch::Contains("frame 11/11 frame_0010.obj: optimized"));
   test::require_valid_gltf(dir / "out/sequence.glb");
   const auto summary = read_csv(dir / "out/summary.csv");
