@@ -65,4 +65,13 @@ if command -v npm >/dev/null 2>&1 && [ ! -d "$root/tools/node_modules/gltf-valid
   (cd "$root/tools" && npm install --silent --no-audit --no-fund --no-save gltf-validator@2.0.0-dev.3.10 >/dev/null 2>&1) ||
     echo "setup: warning: could not install gltf-validator (npm); glTF validation tests will skip"
 fi
+# report.html's 3D player (three.js, bundled by esbuild at build time) and the browser test's
+# driver (puppeteer-core), from npm at the versions web/package-lock.json pins; and Debian's
+# chromium, which the browser test drives headless. Without them the report keeps its tables
+# and plots and says why the player is missing, and the browser test skips.
+if command -v npm >/dev/null 2>&1 && [ ! -x "$root/web/node_modules/.bin/esbuild" ]; then
+  (cd "$root/web" && npm ci --silent --no-audit --no-fund >/dev/null 2>&1) ||
+    echo "setup: warning: could not install web/node_modules (npm ci); report.html will have no 3D player"
+fi
+extra "chromium" "command -v chromium" chromium
 exit 0

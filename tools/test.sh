@@ -60,6 +60,17 @@ elif [ "$status" != 0 ]; then
 fi
 stage "Blender add-on"
 
+# report.html in headless Chromium from file:// (tests/web/run.sh): the demo's player, plots and
+# budget, and hostile strings shown as text; 3: skipped (no chromium), the script says why.
+status=0
+bash tests/web/run.sh || status=$?
+if [ "$status" = 3 ]; then
+  echo "test: report browser stage SKIPPED (see above)"
+elif [ "$status" != 0 ]; then
+  exit "$status"
+fi
+stage "report.html in a browser"
+
 # The cluster scripts as users submit them: through a local Slurm cluster (installed and started
 # by tools/slurm_local.sh), and the Kubernetes manifest (kubectl, offline). 3: skipped, the
 # script says why.

@@ -38,6 +38,7 @@
 #include "geometry/shear.hpp"
 #include "massage/massage.hpp"
 #include "pipeline/frame_source.hpp"
+#include "pipeline/frame_summary.hpp"
 #include "pipeline/sequence_options.hpp"
 #include "pipeline/sequence_plan.hpp"
 
@@ -74,6 +75,10 @@ struct FinishedFrames {
   std::vector<std::string> names;  ///< their names (FrameSource::name), in the same order
   /// Every frame's OutputFrame::record_rows (with files in place or not), in frame order.
   std::string record_rows;
+  /// Every frame of the run (or of every shard), in order: summary.csv's rows (report.html).
+  const std::vector<FrameSummary>* summaries = nullptr;
+  /// The run's warnings so far (the plan's, the frames', the outputs' finished before).
+  const std::vector<std::string>* warnings = nullptr;
 };
 
 /// What finish() did.

@@ -8,6 +8,7 @@
 #include "pipeline/output_displacement.hpp"
 #include "pipeline/output_distortion.hpp"
 #include "pipeline/output_frames.hpp"
+#include "pipeline/output_html.hpp"
 #include "pipeline/output_iterations.hpp"
 #include "pipeline/output_point_cache.hpp"
 
@@ -23,6 +24,7 @@ const std::vector<OutputEntry>& output_registry() {
       output<ColoredPlyOutput>(),
       output<CheckerObjOutput>(),
       output<IterationsCsvOutput>(),
+      output<HtmlReportOutput>(),  // last: its page lists the others' warnings
   };
   return registry;
 }

@@ -351,6 +351,8 @@ void assemble(const Shards& s, const std::string& rows, MergeResult& result) {
     for (const fs::path& folder : output->folders()) remove_stale_temporaries(folder);
   FinishedFrames done;
   done.record_rows = rows;
+  done.summaries = &result.frames;
+  done.warnings = &result.warnings;
   for (const FrameSummary& f : result.frames)
     if (!(f.status == FrameStatus::Failed && config.output.on_failure == OnFailure::Skip)) {
       done.frames.push_back(f.frame);

@@ -16,6 +16,7 @@
 #include "mesh/mesh_check.hpp"
 #include "mesh/timing.hpp"
 #include "pipeline/input_clash.hpp"
+#include "pipeline/mesh_html.hpp"
 #include "pipeline/mesh_report.hpp"
 #include "pipeline/output_lock.hpp"
 #include "pipeline/run_text.hpp"
@@ -80,6 +81,7 @@ void check_outputs(const MeshJobPlan& plan) {
   std::vector<fs::path> outputs = {plan.output_mesh, c.output.dir / "measures.csv",
                                    c.output.dir / "report.json"};
   if (c.output.per_triangle_csv) outputs.push_back(c.output.dir / "triangles.csv");
+  if (c.output.html) outputs.push_back(c.output.dir / "report.html");
   refuse_overwriting_inputs(inputs, outputs);
 }
 
@@ -211,7 +213,8 @@ std::string describe_mesh_plan(const MeshJobPlan& plan) {
   s << "threads: " << plan.threads << "\n";
   s << "output: " << c.output.dir.string() << "\n";
   s << "  " << plan.output_mesh.filename().string() << ", measures.csv, report.json"
-    << (c.output.per_triangle_csv ? ", triangles.csv" : "") << "\n";
+    << (c.output.per_triangle_csv ? ", triangles.csv" : "")
+    << (c.output.html ? ", report.html" : "") << "\n";
   for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
   return s.str();
 }
@@ -262,9 +265,13 @@ MeshJobResult run_mesh_job(const MeshJobPlan& plan) {
         format_triangles_csv(triangles_before, result.massage.ok ? &triangles_after : nullptr));
   std::vector<MeasureRow> rows = {{"before", plan.mesh_name, plan.reference_name, &result.before}};
   if (result.after) rows.push_back({"after", plan.mesh_name, plan.reference_name, &*result.after});
-  write_file_atomic(out / "measures.csv", format_measures_csv(rows, c.measures));
+  const std::string measures_csv = format_measures_csv(rows, c.measures);
+  write_file_atomic(out / "measures.csv", measures_csv);
   result.seconds = seconds_since(t0);
-  write_file_atomic(out / "report.json", make_mesh_report(plan, result).dump(2) + "\n");
+  const nlohmann::json report = make_mesh_report(plan, result);
+  write_file_atomic(out / "report.json", report.dump(2) + "\n");
+  if (c.output.html)
+    write_file_atomic(out / "report.html", mesh_html_page(plan, result, measures_csv, report));
   return result;
 }
 

@@ -67,6 +67,8 @@ struct MeshOutputOptions {
   MeshOutputFormat format = MeshOutputFormat::Same;
   bool per_triangle_csv = false;  ///< triangles.csv, quality per triangle
   bool timings = true;            ///< false leaves run times out (reproducible bytes)
+  bool html = true;               ///< report.html (mesh_html.hpp)
+  double html_max_mb = 50.0;      ///< its size budget, in MiB
 };
 
 template <>
@@ -88,6 +90,14 @@ inline const Fields<MeshOutputOptions>& fields_of<MeshOutputOptions>() {
                          "run times in `report.json`; `false` leaves them out (its `run` and "
                          "every iteration's `seconds`), so that a run reproduces every output "
                          "byte"),
+      field<&O::html>("html", any_value(),
+                      "`report.html`: one self-contained page of the run (the mesh before and "
+                      "after in a 3D viewer coloured by shear, or radius ratio for `remesh`; the "
+                      "measures, warnings, config); see [outputs](outputs.md#reporthtml)"),
+      field<&O::html_max_mb>("html_max_mb", left_open(0, 1e6),
+                             "`report.html`'s size budget in MiB; a mesh that does not fit is "
+                             "left out of the viewer")
+          .written_if([](const O& o) { return o.html; }),
   };
   return fields;
 }

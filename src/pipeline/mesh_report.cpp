@@ -233,6 +233,7 @@ std::vector<std::string> mesh_job_output_names(const MeshJobPlan& plan,
   names.push_back("measures.csv");
   names.push_back("report.json");
   if (plan.config.output.per_triangle_csv) names.push_back("triangles.csv");
+  if (plan.config.output.html) names.push_back("report.html");
   return names;
 }
 
@@ -351,7 +352,8 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
       {"dir", c.output.dir.string()},
       {"mesh", result.massage.ok ? json(plan.output_mesh.filename().string()) : json(nullptr)},
       {"measures", "measures.csv"},
-      {"triangles", c.output.per_triangle_csv ? json("triangles.csv") : json(nullptr)}};
+      {"triangles", c.output.per_triangle_csv ? json("triangles.csv") : json(nullptr)},
+      {"html", c.output.html ? json("report.html") : json(nullptr)}};
   if (c.output.timings)
     r["run"] = {{"threads", plan.threads},
                 {"seconds", result.seconds},

@@ -316,6 +316,7 @@ json make_report(const SequencePlan& plan, const SequenceResult& result) {
     run = {{"threads", plan.threads},
            {"frames_in_flight", plan.frames_in_flight},
            {"seconds", result.seconds},
+           {"seconds_outputs_finish", result.seconds_finish},
            {"frames_processed", processed},
            {"frames_resumed", result.resumed},
            {"frames_per_second", result.seconds > 0 ? processed / result.seconds : 0.0}};

@@ -252,9 +252,13 @@ class SequenceRun {
   // The outputs' whole-run files, summary.csv and report.json.
   void finish() {
     const SequenceJobOptions& c = plan_.config;
+    done_.summaries = &result_.frames;
+    done_.warnings = &result_.warnings;
+    const auto t_finish = Clock::now();
     for (const auto& output : plan_.outputs)
       for (std::string& warning : output->finish(done_).warnings)
         result_.warnings.push_back(std::move(warning));
+    result_.seconds_finish = seconds_since(t_finish);
     result_.seconds = seconds_since(t0_);
     write_file_atomic(c.output.dir / summary_file_name(c.shard),
                       format_summary_csv(result_.frames, c.output.timings));

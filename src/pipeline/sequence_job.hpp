@@ -30,6 +30,8 @@ struct SequenceResult {
   std::map<std::string, int> redone;
   bool interrupted = false;  ///< stopped by RunHooks::cancel before every frame was done
   double seconds = 0.0;      ///< wall time of the whole run
+  /// Of it, the outputs' whole-run files (FrameOutput::finish: report.html, iterations.csv, ...).
+  double seconds_finish = 0.0;
 };
 
 struct RunHooks {

@@ -192,6 +192,8 @@ struct OutputOptions {
   bool per_triangle_csv = false;
   bool displacement_csv = false;
   bool timings = true;  ///< false: 0 seconds, so that a run reproduces every output byte
+  bool html = true;            ///< report.html (output_html.hpp)
+  double html_max_mb = 50.0;   ///< report.html's size budget, in MiB
   OnFailure on_failure = OnFailure::CopyInput;
   ColoredOutputOptions colored;
   CheckerOutputOptions checker;
@@ -239,6 +241,16 @@ inline const Fields<OutputOptions>& fields_of<OutputOptions>() {
       field<&O::iterations>("iterations", any_value(),
                             "`iterations.csv`: one row per frame and iteration (μ, energy, "
                             "distances, solver; Figure 8)"),
+      field<&O::html>("html", any_value(),
+                      "`report.html`: one self-contained page of the run (plots, tables, a 3D "
+                      "player of the frames before and after) that opens from the folder in any "
+                      "browser with no network; its data in `report_data/`. See "
+                      "[outputs](outputs.md#reporthtml)"),
+      field<&O::html_max_mb>("html_max_mb", left_open(0, 1e6),
+                             "`report.html`'s size budget in MiB (2^20 bytes): when the "
+                             "player's frames do not fit, it keeps evenly spaced frames (first "
+                             "and last included) and says so")
+          .written_if([](const O& o) { return o.html; }),
       field<&O::on_failure>("on_failure", choice(kOnFailureNames),
                             "the output of a failed frame: its input unchanged (an OBJ frame "
                             "byte for byte), or nothing"),

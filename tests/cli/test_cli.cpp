@@ -149,12 +149,13 @@ TEST_CASE("one and two threads write the same bytes") {
   int compared = 0;
   for (const auto& entry : fs::recursive_directory_iterator(f.dir / "out")) {
     const fs::path rel = fs::relative(entry.path(), f.dir / "out");
-    if (!entry.is_regular_file() || rel == "report.json") continue;
+    // The reports hold the resolved config, which names the output folder and thread count.
+    if (!entry.is_regular_file() || rel == "report.json" || rel == "report.html") continue;
     INFO(rel.string());
     CHECK(read_file(entry.path()) == read_file(f.dir / "out2" / rel));
     ++compared;
   }
-  CHECK(compared == 16);  // 5 frames, 5 tables, 5 records, summary.csv
+  CHECK(compared == 22);  // 5 frames, 5 tables, 5 records, summary.csv, report_data/ (6 files)
 }
 
 TEST_CASE("bad configs exit with code 2, name the key and write nothing") {
@@ -301,7 +302,8 @@ TEST_CASE("a synthetic input runs without outside data and keeps the ground trut
     "output": {"dir": "demo"}, "massage": {"iterations": 8}})");
   const test::CliRun r = test::run_cli(dir.path(), "demo.json");
   REQUIRE(r.code == 0);
-  CHECK(r.out == "results: demo/ (frames/, records/, summary.csv, report.json)\n");
+  CHECK(r.out == "results: demo/ (frames/, report_data/, records/, report.html, summary.csv, "
+                 "report.json)\n");
   CHECK(fs::exists(dir / "demo/input/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/ground_truth/frame_0003.obj"));
   CHECK(fs::exists(dir / "demo/frames/frame_0003.obj"));
@@ -324,7 +326,8 @@ TEST_CASE("a glTF animation runs from the command line to sequence.glb") {
 
   r = test::run_cli(dir.path(), "job.json");
   REQUIRE(r.code == 0);
-  CHECK(r.out == "results: out/ (positions/, sequence.glb, records/, summary.csv, report.json)\n");
+  CHECK(r.out == "results: out/ (positions/, sequence.glb, report_data/, records/, report.html, "
+                 "summary.csv, report.json)\n");
   CHECK_THAT(r.err, Catch::Contains("frame 11/11 frame_0010.obj: optimized"));
   test::require_valid_gltf(dir / "out/sequence.glb");
   const auto summary = read_csv(dir / "out/summary.csv");

@@ -46,7 +46,7 @@ TEST_CASE("seqmassage runs a remesh config: outputs, the printed report, exit 0"
   for (const char* text :
        {"M = remesh.off (162 vertices, 320 triangles)", "N = source.off", "M -> N\n  before",
         "N -> M\n", "Hausdorff distance\n", "% vs before)", "radius ratio 2r/R of N",
-        "results: out_remesh/ (remesh.off, measures.csv, report.json)"})
+        "results: out_remesh/ (remesh.off, measures.csv, report.json, report.html)"})
     CHECK_THAT(r.out, Contains(text));
   CHECK_THAT(r.err, Contains("seqmassage: remesh remesh.off (162 vertices), 15 iterations"));
   CHECK(fs::exists(f.dir / "out_remesh/remesh.off"));

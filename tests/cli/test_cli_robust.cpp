@@ -98,6 +98,13 @@ int require_complete_files(const fs::path& out, int vertices) {
         const FrameRecord r = frame_record_from_json(j);
         CHECK(check_recorded_outputs(r, out, true) == "");
       }
+    } else if (ext == ".bin") {  // report_data/: the player's data, magic and counts first
+      CHECK(text.rfind("SMHTML", 0) == 0);
+      CHECK(text.size() > 16);
+    } else if (ext == ".html") {  // report.html, whole
+      CHECK(text.rfind("<!DOCTYPE html>", 0) == 0);
+      CHECK(text.size() > 8);
+      CHECK(text.compare(text.size() - 8, 8, "</html>\n") == 0);
     } else if (ext == ".lock") {  // the killed run's lock file: host and pid, taken over next
       CHECK(p.filename().string().rfind(".seqmassage", 0) == 0);
     } else {
@@ -226,7 +233,7 @@ TEST_CASE("3 shards in parallel processes, merged, give the bytes of one run") {
   CHECK(fs::exists(dir / "out/summary.shard-2-of-3.csv"));
   test::CliRun m = test::run_cli(dir.path(), "merge out");
   REQUIRE(m.code == 0);
-  CHECK(m.out == "results: out/ (summary.csv, report.json)\n");
+  CHECK(m.out == "results: out/ (summary.csv, report.json, report.html)\n");
   CHECK(m.err == "seqmassage: merged 3 shards, 10 frames (0 failed)\n");
   test::compare_folders(dir / "single", dir / "out", ".shard-");
   CHECK(require_complete_files(dir / "out", 132) == 0);

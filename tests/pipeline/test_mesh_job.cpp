@@ -311,3 +311,33 @@ TEST_CASE("bad inputs are refused before anything is written, naming the file") 
   CHECK_THAT(plan.warnings[0], Contains("the closest-point correspondences assume"));
   CHECK_FALSE(fs::exists(dir / "out"));
 }
+
+TEST_CASE("a mesh job writes report.html with its mesh before and after") {
+  const test::Box box;
+  const TriMesh mesh = test::jittered_box(box, 4, 0.3, 7);
+  test::TempDir dir("mesh_html");
+  write_mesh(dir / "box.obj", mesh);
+  MeshJobOptions c = job_config(JobKind::Smooth, dir.path(), "box.obj");
+  const MeshJobResult r = run_mesh_job(plan_mesh_job(c));
+  REQUIRE(r.ok());
+  const std::string page = read_file(dir / "out/report.html");
+  const std::string open = "id=\"sm-data\">";
+  const size_t at = page.find(open) + open.size();
+  const nlohmann::json data = nlohmann::json::parse(page.substr(at, page.find("</script>", at) - at));
+  CHECK(data["kind"] == "mesh");
+  CHECK(data["summary_csv"] == read_file(dir / "out/measures.csv"));
+  REQUIRE(data["player"].is_object());
+  CHECK(data["player"]["vertices"] == mesh.num_vertices());
+  CHECK(data["player"]["triangles"] == mesh.num_triangles());
+  CHECK(data["player"]["colour"] == "shear");
+  // The histogram counts every triangle once per side.
+  const std::vector<long long> before = data["histogram"]["before"];
+  long long total = 0;
+  for (long long n : before) total += n;
+  CHECK(total == mesh.num_triangles());
+
+  c.output.html = false;
+  c.output.dir = dir / "off";
+  run_mesh_job(plan_mesh_job(c));
+  CHECK_FALSE(fs::exists(dir / "off/report.html"));
+}

@@ -124,12 +124,13 @@ TEST_CASE("three shards, merged, write exactly what one run writes") {
   test::TempDir dir("shards_lib");
   SequenceJobOptions c = test::tube_job(dir.path(), test::small_tube(8));
   c.input.range = {1, std::nullopt, 1};  // 7 frames: blocks of 2, 2, 3
+  c.output.html = true;  // the merged report.html is the one run's, byte for byte
   run(c);
   fs::rename(dir / "out", dir / "single");
   const MergeResult m = run_shards(c, 3);
   CHECK(m.shards == 3);
   CHECK(m.frames.size() == 7);
-  CHECK(m.written == std::vector<std::string>{"summary.csv", "report.json"});
+  CHECK(m.written == std::vector<std::string>{"summary.csv", "report.json", "report.html"});
   test::compare_folders(dir / "single", dir / "out", ".shard-");
   // A shard's own report: its frames, complete, the plan's warnings.
   const nlohmann::json shard =
@@ -192,6 +193,7 @@ TEST_CASE("a sharded glTF job: merge assembles sequence.glb from the shards' pos
   c.output.dir = dir / "out";
   c.output.format = OutputFormat::Gltf;
   c.output.timings = false;
+  c.output.html = false;
   c.massage.iterations = 4;
   c.checks.max_folded_fraction.reset();  // the strip folds at its sharpest bend (see gltf tests)
   run(c);

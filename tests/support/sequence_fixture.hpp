@@ -34,6 +34,7 @@ inline SequenceJobOptions tube_job(const std::filesystem::path& dir, const Synth
   c.output.dir = dir / "out";
   c.output.per_triangle_csv = true;
   c.output.timings = false;
+  c.output.html = false;  // report.html: test_html_report.cpp and the merge test turn it on
   c.massage.iterations = 8;
   c.threads = 2;
   return c;
