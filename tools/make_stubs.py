@@ -148,6 +148,23 @@ def write_point_cache(
     sample_rate: float = 1.0,
     times: ArrayLike | None = None,
 ) -> None: ...
+
+class Tracker:
+    """One template followed through frames of any connectivity."""
+    def __init__(
+        self,
+        template_vertices: ArrayLike,
+        triangles: ArrayLike,
+        *,
+        massage: dict[str, Any] = ...,
+        **options: Any,
+    ) -> None: ...
+    def track(self, frames: Iterable[tuple[ArrayLike, ArrayLike]]) -> list[dict[str, Any]]: ...
+    def reset(self) -> None: ...
+    @property
+    def mean_edge(self) -> float: ...
+    @property
+    def num_nodes(self) -> int: ...
 '''
 
 
