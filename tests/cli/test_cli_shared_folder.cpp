@@ -109,8 +109,6 @@ TEST_CASE("links planted at the predictable temporary names are never followed",
   REQUIRE(test::run_cli(dir.path(), "-q job.json").code == 0);
   const auto expected = test::folder_bytes(dir / "out");
   fs::remove_all(dir / "out");
-  fs::create_directories(dir / "out/frames");
-  fs::create_directories(dir / "out/records");
   std::vector<fs::path> planted;
   const test::CliRun r = run_after_planting(dir.path(), {"-q", "job.json"}, [&](pid_t pid) {
     // The names the old scheme gave: <file>.<host>-<pid>.<counter>.seqmassage-tmp.
@@ -118,6 +116,7 @@ TEST_CASE("links planted at the predictable temporary names are never followed",
     for (const auto& [name, bytes] : expected)
       for (int n = 0; n < 40; ++n) {
         const fs::path link = dir / "out" / (name + tag + std::to_string(n) + std::string(kTempSuffix));
+        fs::create_directories(link.parent_path());  // every output folder (frames/, records/, ...)
         fs::create_symlink(victim, link);
         planted.push_back(link);
       }
