@@ -70,9 +70,14 @@ complete_words() {  # complete_words WORD... : what completing the last word off
     source "$0"; COMP_WORDS=("$@"); COMP_CWORD=$(($# - 1)); COMP_LINE="$*"; COMP_POINT=${#COMP_LINE}
     _seqmassage; printf "%s\n" "${COMPREPLY[@]}"' "$completion" "$@"
 }
-(cd "$tmp/cfg" && complete_words seqmassage --thr) | grep -qx -- "--threads" || fail "completion: --thr"
-(cd "$tmp/cfg" && complete_words seqmassage me) | grep -qx "merge" || fail "completion: commands"
-(cd "$tmp/cfg" && complete_words seqmassage merge -) | grep -qx -- "--quiet" || fail "completion: merge options"
+# Captured first: grep -q in a pipe would stop reading at its match, and the writer's SIGPIPE
+# fails the pipeline under pipefail now and then.
+offered="$(cd "$tmp/cfg" && complete_words seqmassage --thr)"
+grep -qx -- "--threads" <<<"$offered" || fail "completion: --thr"
+offered="$(cd "$tmp/cfg" && complete_words seqmassage me)"
+grep -qx "merge" <<<"$offered" || fail "completion: commands"
+offered="$(cd "$tmp/cfg" && complete_words seqmassage merge -)"
+grep -qx -- "--quiet" <<<"$offered" || fail "completion: merge options"
 got="$(cd "$tmp/cfg" && complete_words seqmassage "")"
 grep -qx "a.json" <<<"$got" || fail "completion: config files ($got)"
 grep -qx "b.txt" <<<"$got" && fail "completion offers a non-config file"
