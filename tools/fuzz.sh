@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, Release with ASan + UBSan, assertions kept) into build-fuzz/
 # and runs each for SECONDS (default 60), one after another.
-#   bash tools/fuzz.sh [SECONDS] [TARGET...]      targets: obj off ply config gltf (default: all)
+#   bash tools/fuzz.sh [SECONDS] [TARGET...]      targets: obj off ply config gltf point_cache (default: all)
 #   FUZZ_ARGS="-max_len=8192" bash tools/fuzz.sh   extra libFuzzer flags
 # The growing corpus of each target is build-fuzz/corpus/<target>/ (kept between runs; seeded from
 # tests/fuzz/corpus/<target>/ and tests/fuzz/regressions/<target>/). A crash or finding stops that
@@ -12,7 +12,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 
-all_targets=(obj off ply config gltf)
+all_targets=(obj off ply config gltf point_cache)
 seconds="${1:-60}"
 if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ]; then
   echo "usage: bash tools/fuzz.sh [SECONDS] [TARGET...]   (targets: ${all_targets[*]})" >&2

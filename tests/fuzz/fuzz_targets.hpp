@@ -42,4 +42,9 @@ void fuzz_config(const uint8_t* data, size_t size);
 /// mesh is checked and the first, middle and last frames are evaluated.
 void fuzz_gltf(const uint8_t* data, size_t size);
 
+/// parse_point_cache_header and decode_point_cache_frame on PC2 (first byte even) or MDD (odd)
+/// bytes; on success, checks counts, sizes and coordinate limits, and that writing the cache back
+/// with the same timing gives the same bytes.
+void fuzz_point_cache(const uint8_t* data, size_t size);
+
 }  // namespace sm::fuzz

@@ -64,3 +64,7 @@ TEST_CASE("fuzz corpus and regressions: config", "[fuzz]") {
 TEST_CASE("fuzz corpus and regressions: glTF", "[fuzz]") {
   CHECK(replay("gltf", sm::fuzz::fuzz_gltf) > 0);
 }
+
+TEST_CASE("fuzz corpus and regressions: point caches", "[fuzz]") {
+  CHECK(replay("point_cache", sm::fuzz::fuzz_point_cache) > 0);
+}
