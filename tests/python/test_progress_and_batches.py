@@ -137,8 +137,14 @@ def test_ctrl_c_stops_run_between_iterations():
         calls.append(stats["iteration"])
         os.kill(os.getpid(), signal.SIGINT)
 
-    with pytest.raises(KeyboardInterrupt):
-        massager.run(drifted(template, 3), on_iteration=interrupt)
+    # Python's own SIGINT handler, whatever this process inherited: a shell starts background
+    # jobs with SIGINT ignored, and an ignored signal never reaches the check.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            massager.run(drifted(template, 3), on_iteration=interrupt)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert len(calls) == 1  # stopped after the iteration in which it came, not at the end
     # The Massager is usable afterwards, with the same result as before.
     assert massager.run(drifted(template, 3)).ok
