@@ -3,6 +3,7 @@
 // byte-identical across thread counts, its data decodable back to the run's positions.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <regex>
 
 #include "io/atomic_file.hpp"
@@ -31,7 +32,8 @@ std::string element_text(const std::string& page, const std::string& id) {
 // Base64 decoding, written here from RFC 4648 (not the code under test's inverse).
 std::string base64_decode(const std::string& text) {
   std::string out;
-  int bits = 0, value = 0;
+  int bits = 0;
+  uint32_t value = 0;  // unsigned, and only the bits not yet written are kept
   for (char c : text) {
     int d = -1;
     if (c >= 'A' && c <= 'Z') d = c - 'A';
@@ -40,7 +42,7 @@ std::string base64_decode(const std::string& text) {
     else if (c == '+') d = 62;
     else if (c == '/') d = 63;
     if (d < 0) continue;
-    value = (value << 6) | d;
+    value = ((value << 6) | uint32_t(d)) & 0xffffu;
     bits += 6;
     if (bits >= 8) {
       bits -= 8;
