@@ -56,7 +56,8 @@ extra "node and npm" "command -v node && command -v npm" nodejs npm
 # kubectl for the Kubernetes manifest's test; Debian's conflicts with other kubectl packages.
 extra "kubectl" "command -v kubectl" kubernetes-client
 # Blender for the add-on's tests (its Debian build runs the system Python 3, as the module
-# does), and a virtual X display for the panel's screenshot (tools/blender_screenshot.sh).
+# does), and a virtual X display for the panel's screenshot (tools/blender_screenshot.sh) and
+# the modal operators' test (tests/blender/test_modal_cancel.py, a windowed Blender).
 extra "blender" "command -v blender" blender
 extra "xvfb" "command -v xvfb-run" xvfb
 

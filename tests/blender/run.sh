@@ -6,6 +6,9 @@
 #   bash tests/blender/run.sh          (tools/test.sh runs it after the Release tests)
 #   bash tests/blender/run.sh mesh_cache   only test_mesh_cache.py
 #   SEQMASSAGE_BUILD_DIR=build-dev bash tests/blender/run.sh   another build folder than build/
+# test_modal_*.py drive the operators as from the UI (modal, Esc pressed), which needs a window:
+# they run in a windowed Blender on a virtual display (xvfb-run, Debian's xvfb) with
+# --enable-event-simulate, and are skipped with a message where xvfb-run is missing.
 # Exit status: 0 passed; 1 failed; 3 skipped (no blender, or the module is not built).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -37,7 +40,17 @@ for test in "$root"/tests/blender/test_"${1:-}"*.py; do
   status=0
   out="$build/blender-test/$name.log"
   mkdir -p "$(dirname "$out")"
-  blender -b --factory-startup --python-exit-code 1 --python "$test" >"$out" 2>&1 || status=$?
+  case "$name" in
+    test_modal_*)
+      if ! command -v xvfb-run >/dev/null 2>&1; then
+        log "$name SKIPPED: needs a window, and xvfb-run (Debian's xvfb) is not installed"
+        continue
+      fi
+      timeout 600 xvfb-run -a -s "-screen 0 1280x720x24" blender --factory-startup \
+        --enable-event-simulate --python-exit-code 1 --python "$test" >"$out" 2>&1 || status=$?
+      ;;
+    *) blender -b --factory-startup --python-exit-code 1 --python "$test" >"$out" 2>&1 || status=$? ;;
+  esac
   grep -E "^(test_[a-z_]+\.py|Info|Warning|Error):" "$out" || true
   if [ "$status" = 0 ] && grep -q "^$name: PASSED" "$out"; then
     log "$name passed ($((SECONDS - start)) s)"
