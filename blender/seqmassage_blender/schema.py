@@ -21,103 +21,27 @@ OPERATOR_KEYS = ("vertex_weights", "pinned")
 _INT_LIMIT = 2**31 - 1
 
 
-def _first(d, *names, default=None):
-    for n in names:
-        if n in d and d[n] is not None:
-            return d[n]
-    return default
-
-
-def _parse_range_text(text):
-    """Choices and bounds from the reference table's "allowed" text."""
-    out = {}
-    choices = [c for c in re.findall(r'"([^"]*)"', text) if c != "auto"]
-    if choices:
-        out["choices"] = choices
-    if '"auto"' in text:
-        out["auto"] = True
-    m = re.search(r"([\[(])\s*([-+0-9.eE]+|-inf)\s*,\s*([-+0-9.eE]+|inf)\s*([\])])", text)
-    if m:
-        out.update(lo=float(m.group(2)), hi=float(m.group(3)), lo_open=m.group(1) == "(",
-                   hi_open=m.group(4) == ")")
-    m = re.search(r"(>=|>)\s*([-+0-9.eE]+)", text)
-    if m:
-        out.update(lo=float(m.group(2)), lo_open=m.group(1) == ">")
-    return out
-
-
-def _parse_range(r):
-    if r is None:
-        return {}
-    if isinstance(r, str):
-        return _parse_range_text(r)
-    if isinstance(r, dict):
-        out = {}
-        choices = _first(r, "choices", "names", "values", "enum")
-        if choices:
-            out["choices"] = [c if isinstance(c, str) else c[0] for c in choices]
-        for key in ("lo", "hi", "min", "max"):
-            if key in r and r[key] is not None:
-                out["lo" if key in ("lo", "min") else "hi"] = float(r[key])
-        for key in ("lo_open", "hi_open", "auto", "auto_word"):
-            if r.get(key):
-                out["auto" if key == "auto_word" else key] = True
-        return out
-    if isinstance(r, (list, tuple)):
-        if all(isinstance(c, str) for c in r):
-            return {"choices": [c for c in r if c != "auto"], "auto": "auto" in r}
-        if len(r) == 2:
-            return {"lo": float(r[0]) if r[0] is not None else -math.inf,
-                    "hi": float(r[1]) if r[1] is not None else math.inf}
-    return {}
+# The Blender property kind of each massage_keys() type; the other types (lists, paths,
+# optional values) are not panel settings.
+_KINDS = {"boolean": "bool", "integer": "int", "number": "float", "number_or_auto": "auto_number",
+          "choice": "enum"}
 
 
 def normalize(entry):
-    """One table entry as {name, kind, default, choices, lo, hi, auto, doc}; kind None: skipped."""
-    if isinstance(entry, (list, tuple)):
-        entry = dict(zip(("name", "type", "default", "range", "doc"), entry))
-    e = dict(entry)
-    name = str(_first(e, "name", "key")).split(".")[-1]
-    typ = str(_first(e, "type", default="")).lower()
-    default = _first(e, "default")
-    if isinstance(default, dict):  # per job: the sequence job's
-        default = default.get("sequence", next(iter(default.values()), None))
-    info = _parse_range(_first(e, "range", "allowed", "spec"))
-    for key in ("choices", "names", "values"):
-        if key in e and e[key]:
-            info["choices"] = [c if isinstance(c, str) else c[0] for c in e[key]]
-    for key, bound in (("min", "lo"), ("max", "hi")):  # explicit bounds over the range's text
-        if key in e:
-            info[bound] = float(e[key]) if e[key] is not None else (
-                -math.inf if bound == "lo" else math.inf)
-    if e.get("auto") or default == "auto" or "auto" in typ:
-        info["auto"] = True
-    doc = str(_first(e, "doc", "description", "help", default=""))
-    doc = re.sub(r"`([^`]*)`", r"\1", doc)  # Markdown code spans read as plain text in a tooltip
-    kind = None
-    if (name in OPERATOR_KEYS or "array" in typ or "list" in typ or "path" in typ
-            or "none" in typ):  # lists, paths and optional values: not a Blender property
-        kind = None
-    elif info.get("auto") and ("number" in typ or "float" in typ or "double" in typ):
-        kind = "auto_number"
-    elif "bool" in typ:
-        kind = "bool"
-    elif "int" in typ:
-        kind = "int"
-    elif "number" in typ or "float" in typ or "double" in typ:
-        kind = "float"
-    elif info.get("choices"):
-        kind = "enum"
-    return {"name": name, "kind": kind, "default": default, "doc": doc,
-            "choices": info.get("choices", []), "lo": info.get("lo", -math.inf),
-            "hi": info.get("hi", math.inf)}
+    """One massage_keys() entry as {name, kind, default, choices, lo, hi, doc}; kind None: not a
+    panel setting. The table's data is read as it is: type, min, max, choices."""
+    name = entry["name"]
+    kind = None if name in OPERATOR_KEYS else _KINDS.get(entry["type"])
+    lo, hi = entry["min"], entry["max"]
+    doc = re.sub(r"`([^`]*)`", r"\1", entry["doc"])  # Markdown code spans read as plain text
+    return {"name": name, "kind": kind, "default": entry["default"], "doc": doc,
+            "choices": list(entry["choices"] or []),
+            "lo": -math.inf if lo is None else float(lo),
+            "hi": math.inf if hi is None else float(hi)}
 
 
 def entries(module):
-    table = module.massage_keys()
-    if isinstance(table, dict):
-        table = [dict(v, name=k) if isinstance(v, dict) else (k, *v) for k, v in table.items()]
-    return [normalize(e) for e in table]
+    return [normalize(e) for e in module.massage_keys()]
 
 
 def _label(name):

@@ -4,65 +4,13 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "mesh/key_type.hpp"
 
 namespace sm {
 namespace {
 
 std::string code(const std::string& text) {
   return "`" + text + "`";
-}
-
-std::string quoted_names(const ValueSpec& spec) {
-  std::string out;
-  for (const auto& [name, value] : spec.names)
-    out += (out.empty() ? "" : ", ") + code("\"" + std::string(name) + "\"");
-  return out;
-}
-
-// "[0, 4096]", ">= 1", "> 0", "(0, 1)": the range without "an integer" / "a number" (in).
-std::string range(const std::string& described) {
-  for (const char* lead : {"an integer in ", "an integer ", "a number in ", "a number "})
-    if (described.rfind(lead, 0) == 0) return described.substr(std::string(lead).size());
-  return described;
-}
-
-std::string integers(const ValueSpec& s) {
-  if (!s.lo_key.empty()) return ">= " + code(std::string(s.lo_key));
-  if (!s.hi_key.empty()) return "[0, " + code(std::string(s.hi_key)) + " − 1]";
-  return range(describe_integers(s.lo, s.hi));
-}
-
-template <class T>
-bool holds(const ValueRef& v) {
-  return std::holds_alternative<T>(v);
-}
-
-// The "type" and "allowed" cells of a key.
-std::pair<std::string, std::string> type_and_allowed(const Entry& e) {
-  const ValueSpec& s = e.info->spec;
-  const ValueRef& v = e.value;
-  if (holds<bool*>(v)) return {"boolean", ""};
-  if (holds<int*>(v)) return {"integer", integers(s)};
-  if (holds<double*>(v)) return {"number", range(describe_numbers(s))};
-  if (holds<std::optional<int>*>(v)) return {"integer or null", integers(s) + ", or `null`"};
-  if (holds<std::optional<double>*>(v) && s.auto_word)
-    return {"string or number", "`\"auto\"`, or " + describe_numbers(s)};
-  if (holds<std::optional<double>*>(v))
-    return {"number or null", range(describe_numbers(s)) + ", or `null`"};
-  if (holds<std::filesystem::path*>(v)) return {"path", ""};
-  if (holds<std::vector<int>*>(v)) return {"array", std::string(s.items) + " " + integers(s)};
-  if (holds<std::vector<double>*>(v))
-    return {"array", "at least two increasing numbers; the last may be `\"inf\"`"};
-  if (holds<FrameSelection*>(v))
-    return {"string or array",
-            "`\"all\"`, an array of frame indices >= 0, or a range `\"A:B[:STEP]\"` (B may be "
-            "empty: to the end)"};
-  if (holds<ChoiceRef>(v)) return {"string", quoted_names(s)};
-  if (holds<SelectorRef>(v))
-    return {"string, integer or null", "a name (a non-empty string), an index >= 0, or `null`"};
-  if (std::get<ObjectRef>(v).mode == ObjectRef::Mode::Toggle)
-    return {"boolean or object", "`true` (every default), `false`, or an object of the keys below"};
-  return {"object", "the keys below"};
 }
 
 std::string default_cell(const Entry& e) {
@@ -99,9 +47,10 @@ void rows(std::ostream& out, const std::string& path, const std::vector<Entries>
     }
     const std::string key = join_path(path, e.info->key);
     const bool is_shared = std::find(shared.begin(), shared.end(), key) != shared.end();
-    auto [type, allowed] = type_and_allowed(e);
-    if (is_shared) allowed = "the keys of [`" + key + "`](#" + key + "-every-job)";
-    out << "| " << code(key) << " | " << type;
+    const KeyType type = key_type(e);
+    const std::string allowed =
+        is_shared ? "the keys of [`" + key + "`](#" + key + "-every-job)" : type.allowed;
+    out << "| " << code(key) << " | " << type.json;
     for (const Entries& c : columns) out << " | " << default_cell(c[i]);
     out << " | " << allowed << " | " << escaped(e.info->doc) << " |\n";
     if (o && !is_shared) rows(out, key, inner, shared);

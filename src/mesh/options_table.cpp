@@ -15,17 +15,24 @@ std::string number_text(double x) {
 
 }  // namespace
 
+std::string interval_text(const ValueSpec& s, bool integer) {
+  if (integer) {
+    const auto text = [](double x) { return std::to_string(static_cast<long long>(x)); };
+    if (std::isinf(s.hi)) return ">= " + text(s.lo);
+    return "[" + text(s.lo) + ", " + text(s.hi) + "]";
+  }
+  if (std::isinf(s.hi)) return (s.lo_open ? "> " : ">= ") + number_text(s.lo);
+  return (s.lo_open ? "(" : "[") + number_text(s.lo) + ", " + number_text(s.hi) +
+         (s.hi_open ? ")" : "]");
+}
+
 std::string describe_integers(double lo, double hi) {
-  const auto text = [](double x) { return std::to_string(static_cast<long long>(x)); };
-  if (std::isinf(hi)) return "an integer >= " + text(lo);
-  return "an integer in [" + text(lo) + ", " + text(hi) + "]";
+  const ValueSpec s = closed(lo, hi);
+  return std::string(std::isinf(hi) ? "an integer " : "an integer in ") + interval_text(s, true);
 }
 
 std::string describe_numbers(const ValueSpec& s) {
-  if (std::isinf(s.hi))
-    return "a number " + std::string(s.lo_open ? "> " : ">= ") + number_text(s.lo);
-  return "a number in " + std::string(s.lo_open ? "(" : "[") + number_text(s.lo) + ", " +
-         number_text(s.hi) + (s.hi_open ? ")" : "]");
+  return std::string(std::isinf(s.hi) ? "a number " : "a number in ") + interval_text(s, false);
 }
 
 ConfigError number_error(const std::string& path, const ValueSpec& spec, double x) {

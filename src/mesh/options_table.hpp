@@ -40,6 +40,9 @@ struct ValueSpec {
   }
 };
 
+/// The interval of `spec` alone: "[0, 4096]", ">= 1" (integers, hi infinite or not); "> 0",
+/// "(0, 1]" (numbers). Integers are closed, their bounds whole.
+std::string interval_text(const ValueSpec& spec, bool integer);
 /// "an integer >= 1" (hi infinite), "an integer in [0, 4096]".
 std::string describe_integers(double lo, double hi);
 /// "a number > 0", "a number in [0, 1)".
