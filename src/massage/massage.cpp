@@ -8,7 +8,7 @@
 
 #include "massage/massage_run.hpp"
 #include "massage/massager_state.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

@@ -21,7 +21,7 @@
 #include "geometry/weights.hpp"
 #include "massage/reference.hpp"
 #include "massage/shape_target.hpp"
-#include "mesh/options_table.hpp"
+#include "core/options_table.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {

@@ -1,10 +1,10 @@
-// Options tables (mesh/options_table.hpp): the references a table gives to a struct's members,
+// Options tables (core/options_table.hpp): the references a table gives to a struct's members,
 // enum names, and check_ranges for options built in code.
 #include <catch2/catch.hpp>
 
-#include "mesh/errors.hpp"
-#include "mesh/frame_selection.hpp"
-#include "mesh/options_table.hpp"
+#include "core/errors.hpp"
+#include "core/frame_selection.hpp"
+#include "core/options_table.hpp"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // config reader and the command line use them.
 #include <catch2/catch.hpp>
 
-#include "mesh/spelling.hpp"
+#include "core/spelling.hpp"
 
 using sm::did_you_mean;
 using sm::edit_distance;
