@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "config/config.hpp"
+#include "massage/massage_keys.hpp"
 
 namespace sm {
 namespace {

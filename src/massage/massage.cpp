@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "massage/massage_keys.hpp"
 #include "massage/massage_run.hpp"
 #include "massage/massager_state.hpp"
 #include "core/errors.hpp"

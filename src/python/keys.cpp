@@ -7,6 +7,7 @@
 
 #include "io/options_json.hpp"
 #include "massage/massage.hpp"
+#include "massage/massage_keys.hpp"
 #include "pipeline/mesh_jobs/measures.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"

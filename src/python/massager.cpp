@@ -15,6 +15,7 @@
 #include "io/options_json.hpp"
 #include "io/vertex_weights.hpp"
 #include "massage/massage.hpp"
+#include "massage/massage_keys.hpp"
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"

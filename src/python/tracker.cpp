@@ -11,6 +11,7 @@
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "track/tracker.hpp"
+#include "massage/massage_keys.hpp"
 
 namespace sm::python {
 namespace {

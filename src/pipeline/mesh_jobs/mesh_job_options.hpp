@@ -7,6 +7,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "massage/massage.hpp"
+#include "massage/massage_keys.hpp"
 #include "core/options_table.hpp"
 #include "pipeline/sequence/job_kind.hpp"
 #include "pipeline/mesh_jobs/measures.hpp"

@@ -6,6 +6,7 @@
 
 #include "pipeline/report/report.hpp"
 #include "pipeline/cluster/shard.hpp"
+#include "massage/massage_keys.hpp"
 
 namespace sm {
 

@@ -13,6 +13,7 @@
 #include "io/gltf/gltf_write.hpp"
 #include "io/point_cache.hpp"
 #include "massage/massage.hpp"
+#include "massage/massage_keys.hpp"
 #include "core/frame_selection.hpp"
 #include "core/options_table.hpp"
 #include "pipeline/outputs/checker.hpp"
