@@ -25,8 +25,8 @@
 #include "geometry/shear.hpp"
 #include "io/mesh_file.hpp"
 #include "massage/massage.hpp"
-#include "mesh/timing.hpp"
-#include "pipeline/synthetic.hpp"
+#include "core/timing.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 
 namespace fs = std::filesystem;
 using namespace sm;

@@ -22,7 +22,7 @@
 #include "io/mesh_file.hpp"
 #include "massage/massage.hpp"
 #include "mesh/primitives.hpp"
-#include "mesh/timing.hpp"
+#include "core/timing.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;

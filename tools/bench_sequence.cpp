@@ -54,10 +54,10 @@
 #include "io/obj.hpp"
 #include "io/sha256.hpp"
 #include "massage/massage.hpp"
-#include "mesh/timing.hpp"
-#include "pipeline/output_distortion.hpp"
-#include "pipeline/report.hpp"
-#include "pipeline/sequence_options.hpp"
+#include "core/timing.hpp"
+#include "pipeline/outputs/output_distortion.hpp"
+#include "pipeline/report/report.hpp"
+#include "pipeline/sequence/sequence_options.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;

@@ -29,7 +29,7 @@
 #include "io/frame_folder.hpp"
 #include "io/obj.hpp"
 #include "massage/massage.hpp"
-#include "pipeline/fold_check.hpp"
+#include "pipeline/sequence/fold_check.hpp"
 
 namespace fs = std::filesystem;
 using namespace sm;
@@ -82,7 +82,7 @@ std::vector<Variant> distance_variants() {
 }
 
 // Both directions between an optimized frame and its input, as the sequence job measures them
-// (pipeline/sequence_job.cpp, process_frame): the output's BVH refit from the input's and the
+// (pipeline/sequence/sequence_job.cpp, process_frame): the output's BVH refit from the input's and the
 // output's projection frames are part of the cost.
 struct FramePair {
   DistanceStats out_to_in, in_to_out;

@@ -33,9 +33,9 @@
 #include "config/config.hpp"
 #include "io/mesh_file.hpp"
 #include "massage/massage.hpp"
-#include "mesh/timing.hpp"
-#include "pipeline/sequence_job.hpp"
-#include "pipeline/synthetic.hpp"
+#include "core/timing.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;

@@ -129,8 +129,8 @@ def functions(path):
 
 
 # The config mapping: the generic reader/writer of the field tables and the config's own rules.
-# Not counted: the tables (beside each options struct), the strict JSON parser (io/config.*),
-# the words of messages (mesh/spelling.*) and the reference generator (config/reference.*).
+# Not counted: the tables (beside each options struct), the strict JSON parser (io/json_text.*),
+# the words of messages (core/spelling.*) and the reference generator (config/reference.*).
 MAPPING = ["src/io/options_json.hpp", "src/io/options_json.cpp",
            "src/config/config.hpp", "src/config/config.cpp"]
 

@@ -50,7 +50,7 @@ def load_matplotlib():
 
 
 # ---------------------------------------------------------------------------------------------
-# The blue-red scale of seqmassage's colored output (pipeline/shear_ply.hpp): blue, cyan, green,
+# The blue-red scale of seqmassage's colored output (pipeline/outputs/shear_ply.hpp): blue, cyan, green,
 # yellow, red at 0, 1/4, 1/2, 3/4, 1.
 
 SCALE_STOPS = [(0.0, (0, 0, 255)), (0.25, (0, 255, 255)), (0.5, (0, 255, 0)),

@@ -19,10 +19,10 @@
 #include "geometry/bvh.hpp"
 #include "io/atomic_file.hpp"
 #include "io/mesh_file.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "mesh/timing.hpp"
-#include "pipeline/mesh_job.hpp"
+#include "core/timing.hpp"
+#include "pipeline/mesh_jobs/mesh_job.hpp"
 
 using namespace sm;
 namespace fs = std::filesystem;

@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "mesh/spelling.hpp"
+#include "core/spelling.hpp"
 
 namespace sm::cli {
 

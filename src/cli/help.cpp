@@ -1,6 +1,6 @@
 #include "cli/help.hpp"
 
-#include "pipeline/frame_output.hpp"
+#include "pipeline/outputs/frame_output.hpp"
 
 namespace sm::cli {
 

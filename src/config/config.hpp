@@ -1,6 +1,6 @@
 #pragma once
 /// The job configuration: a JSON file whose objects map one-to-one onto a job's options
-/// (pipeline/sequence_options.hpp, pipeline/mesh_job_options.hpp) through their tables, checked
+/// (pipeline/sequence/sequence_options.hpp, pipeline/mesh_jobs/mesh_job_options.hpp) through their tables, checked
 /// completely before anything runs: types, ranges and unknown keys by the tables
 /// (io/options_json.hpp), the rules across keys here. Messages name the key by its JSON path.
 #include <filesystem>
@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/config.hpp"
+#include "io/json_text.hpp"
 #include "io/options_json.hpp"
-#include "pipeline/mesh_job_options.hpp"
-#include "pipeline/sequence_options.hpp"
+#include "pipeline/mesh_jobs/mesh_job_options.hpp"
+#include "pipeline/sequence/sequence_options.hpp"
 
 namespace sm {
 

@@ -4,7 +4,8 @@
 #include <vector>
 
 #include "config/config.hpp"
-#include "mesh/key_type.hpp"
+#include "core/key_type.hpp"
+#include "massage/massage_keys.hpp"
 
 namespace sm {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "geometry/closest_point.hpp"
 #include "geometry/float_bounds.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "geometry/sample_budget.hpp"
 #include "geometry/triangle_grid.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

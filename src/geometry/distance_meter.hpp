@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "geometry/bvh.hpp"
-#include "geometry/distance.hpp"
+#include "geometry/distance_options.hpp"
 #include "geometry/distance_layout.hpp"
 #include "geometry/distance_workspace.hpp"
 #include "geometry/triangle_planes.hpp"

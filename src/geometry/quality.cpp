@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

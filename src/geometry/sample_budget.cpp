@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "geometry/distance.hpp"
+#include "geometry/distance_options.hpp"
 #include "geometry/distance_layout.hpp"
 #include "mesh/mesh.hpp"
 

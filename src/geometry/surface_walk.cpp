@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "geometry/closest_point.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "geometry/float_bounds.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

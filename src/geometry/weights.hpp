@@ -3,7 +3,7 @@
 /// a template mesh T, and the shape matrix A = I − Λ of eq. 6.
 #include <Eigen/SparseCore>
 
-#include "mesh/enum_names.hpp"
+#include "core/enum_names.hpp"
 #include "mesh/mesh.hpp"
 
 namespace sm {

@@ -4,7 +4,7 @@
 #include <string>
 #include <system_error>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

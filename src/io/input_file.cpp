@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 #include "io/obj.hpp"
 #include "io/off.hpp"
 #include "io/ply.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

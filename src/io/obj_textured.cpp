@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "io/text_scan.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

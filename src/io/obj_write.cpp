@@ -7,7 +7,7 @@
 #include "io/obj.hpp"
 #include "io/obj_lines.hpp"
 #include "io/text_scan.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <optional>
 
-#include "mesh/errors.hpp"
-#include "mesh/frame_selection.hpp"
-#include "mesh/spelling.hpp"
+#include "core/errors.hpp"
+#include "core/frame_selection.hpp"
+#include "core/spelling.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 #pragma once
-/// Options structs as JSON, through their tables (mesh/options_table.hpp). Reading is strict and
+/// Options structs as JSON, through their tables (core/options_table.hpp). Reading is strict and
 /// every message names the key by its JSON path: an unknown key (with the nearest known key for
 /// a typo), a wrong type, a value out of range, a missing required key, e.g.
 /// `massage.iterations: expected an integer >= 1, got "ten"`. Writing gives every key, so that
@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/options_table.hpp"
+#include "core/options_table.hpp"
 
 namespace sm {
 

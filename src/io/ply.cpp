@@ -7,8 +7,8 @@
 
 #include "io/atomic_file.hpp"
 #include "io/text_scan.hpp"
-#include "mesh/coordinate_limit.hpp"
-#include "mesh/errors.hpp"
+#include "core/coordinate_limit.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

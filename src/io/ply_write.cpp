@@ -5,7 +5,7 @@
 #include "io/atomic_file.hpp"
 #include "io/ply.hpp"
 #include "io/text_scan.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

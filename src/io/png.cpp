@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

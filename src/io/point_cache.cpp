@@ -10,8 +10,8 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
-#include "mesh/coordinate_limit.hpp"
-#include "mesh/errors.hpp"
+#include "core/coordinate_limit.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

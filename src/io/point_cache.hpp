@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "mesh/enum_names.hpp"
+#include "core/enum_names.hpp"
 #include "mesh/mesh.hpp"
 
 namespace sm {
@@ -68,7 +68,7 @@ std::string read_point_cache_frame_bytes(const std::filesystem::path& file,
 /// The n×3 positions of frame `frame` from its raw bytes (header.frame_bytes() of them). Throws
 /// InputError "<name>: frame F, vertex V: non-finite position (x, y, z)" for NaN or infinity,
 /// and "<name>: frame F, vertex V: coordinate y 1e+30 is too large (more than 1e18 ...)" beyond
-/// kMaxCoordinate (mesh/coordinate_limit.hpp), as every mesh reader.
+/// kMaxCoordinate (core/coordinate_limit.hpp), as every mesh reader.
 Positions decode_point_cache_frame(std::string_view bytes, const PointCacheHeader& header,
                                    int frame, const std::string& name);
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "io/input_file.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

@@ -6,9 +6,10 @@
 #include <optional>
 #include <sstream>
 
+#include "massage/massage_keys.hpp"
 #include "massage/massage_run.hpp"
 #include "massage/massager_state.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 namespace {

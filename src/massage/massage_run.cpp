@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "massage/plane_term.hpp"
-#include "mesh/timing.hpp"
+#include "core/timing.hpp"
 
 namespace sm {
 namespace {

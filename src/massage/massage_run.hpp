@@ -16,7 +16,7 @@
 #include "massage/coupled_solver.hpp"
 #include "massage/linear_solver.hpp"
 #include "massage/massager_state.hpp"
-#include "mesh/timing.hpp"
+#include "core/timing.hpp"
 
 namespace sm {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

@@ -5,7 +5,7 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/triangle_planes.hpp"
-#include "mesh/enum_names.hpp"
+#include "core/enum_names.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
 

@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "geometry/weights.hpp"
-#include "mesh/enum_names.hpp"
+#include "core/enum_names.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/topology.hpp"
 

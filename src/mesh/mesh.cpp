@@ -6,7 +6,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm::python {
 namespace {
@@ -149,7 +149,7 @@ py::array_t<double> to_numpy(const Eigen::VectorXd& x) {
 
 namespace {
 
-// The nesting the config reader accepts (io/config.cpp): a Python value nested deeper is refused
+// The nesting the config reader accepts (io/json_text.cpp): a Python value nested deeper is refused
 // as a config file would be, before the recursion below could exhaust the stack.
 constexpr int kMaxDepth = 64;
 

@@ -7,11 +7,11 @@
 #include <variant>
 
 #include "config/config.hpp"
-#include "pipeline/frame_record.hpp"
-#include "pipeline/mesh_job.hpp"
-#include "pipeline/mesh_report.hpp"
-#include "pipeline/report.hpp"
-#include "pipeline/sequence_job.hpp"
+#include "pipeline/cluster/frame_record.hpp"
+#include "pipeline/mesh_jobs/mesh_job.hpp"
+#include "pipeline/mesh_jobs/mesh_report.hpp"
+#include "pipeline/report/report.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

@@ -1,4 +1,4 @@
-/// massage_keys() and measure_keys(): the options tables (mesh/options_table.hpp) as data, for
+/// massage_keys() and measure_keys(): the options tables (core/options_table.hpp) as data, for
 /// user interfaces built from them (the Blender add-on's panel): every key's name, type, default,
 /// range and doc, in table order.
 #include <cmath>
@@ -7,8 +7,9 @@
 
 #include "io/options_json.hpp"
 #include "massage/massage.hpp"
-#include "mesh/key_type.hpp"
-#include "pipeline/measures.hpp"
+#include "core/key_type.hpp"
+#include "massage/massage_keys.hpp"
+#include "pipeline/mesh_jobs/measures.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

@@ -4,9 +4,9 @@
 
 #include "geometry/shear.hpp"
 #include "io/options_json.hpp"
-#include "mesh/errors.hpp"
-#include "pipeline/measures.hpp"
-#include "pipeline/mesh_report.hpp"
+#include "core/errors.hpp"
+#include "pipeline/mesh_jobs/measures.hpp"
+#include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

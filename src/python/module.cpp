@@ -3,8 +3,8 @@
 /// exceptions: bind_errors maps them onto Python's.
 #include <pybind11/pybind11.h>
 
-#include "mesh/errors.hpp"
-#include "pipeline/report.hpp"
+#include "core/errors.hpp"
+#include "pipeline/report/report.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

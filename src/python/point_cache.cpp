@@ -9,7 +9,7 @@
 #include <pybind11/stl.h>  // PointCache.times
 
 #include "io/point_cache.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

@@ -5,12 +5,13 @@
 #include <utility>
 #include <vector>
 
-#include "io/gltf_weld.hpp"
+#include "io/gltf/gltf_weld.hpp"
 #include "io/options_json.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "track/tracker.hpp"
+#include "massage/massage_keys.hpp"
 
 namespace sm::python {
 namespace {

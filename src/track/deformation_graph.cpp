@@ -6,7 +6,7 @@
 #include <random>
 #include <utility>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

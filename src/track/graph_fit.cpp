@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm {
 

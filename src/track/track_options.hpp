@@ -2,8 +2,8 @@
 /// The options of the tracker (track job, Python Tracker): the deformation graph, its non-rigid
 /// ICP schedule, the tolerances that mark a frame `lost`, and recovery. Lengths are in mean edge
 /// lengths of the template, angles in degrees. The config's "track" object maps onto it.
-#include "mesh/enum_names.hpp"
-#include "mesh/options_table.hpp"
+#include "core/enum_names.hpp"
+#include "core/options_table.hpp"
 
 namespace sm {
 

@@ -7,8 +7,8 @@
 #include <optional>
 
 #include "geometry/shear.hpp"
-#include "mesh/errors.hpp"
-#include "mesh/timing.hpp"
+#include "core/errors.hpp"
+#include "core/timing.hpp"
 #include "mesh/topology.hpp"
 
 namespace sm {

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/cli_process.hpp"
 #include "support/gltf_models.hpp"
 #include "support/sequence_fixture.hpp"

@@ -14,7 +14,7 @@
 #include <optional>
 
 #include "io/atomic_file.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/cli_process.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

@@ -12,8 +12,8 @@
 
 #include "io/atomic_file.hpp"
 #include "io/obj.hpp"
-#include "pipeline/frame_record.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/cluster/frame_record.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/cli_process.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

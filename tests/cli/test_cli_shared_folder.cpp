@@ -15,7 +15,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/sha256.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/cli_process.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

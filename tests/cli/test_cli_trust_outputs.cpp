@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
-#include "pipeline/output_lock.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/cluster/output_lock.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/cli_process.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

@@ -8,7 +8,7 @@
 #include "io/atomic_file.hpp"
 #include "io/obj.hpp"
 #include "io/point_cache.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/cli_process.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

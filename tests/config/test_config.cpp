@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "config/config.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace sm;

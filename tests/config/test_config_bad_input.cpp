@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "config/config.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

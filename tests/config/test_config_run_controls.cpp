@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "config/config.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 using namespace sm;
 using json = nlohmann::json;

@@ -8,7 +8,7 @@
 
 #include "config/config.hpp"
 #include "io/atomic_file.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

@@ -5,7 +5,7 @@
 
 #include "config/config.hpp"
 #include "fuzz_targets.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm::fuzz {
 

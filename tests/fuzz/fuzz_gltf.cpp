@@ -1,4 +1,4 @@
-// Fuzz target: the glTF loading path (io/gltf_load.hpp), from the file's bytes to evaluated frames.
+// Fuzz target: the glTF loading path (io/gltf/gltf_load.hpp), from the file's bytes to evaluated frames.
 #include <unistd.h>
 
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <string>
 
 #include "fuzz_targets.hpp"
-#include "io/gltf_load.hpp"
-#include "mesh/errors.hpp"
+#include "io/gltf/gltf_load.hpp"
+#include "core/errors.hpp"
 
 namespace sm::fuzz {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "fuzz_targets.hpp"
 #include "io/obj.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm::fuzz {
 namespace {

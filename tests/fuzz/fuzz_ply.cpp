@@ -4,7 +4,7 @@
 
 #include "fuzz_targets.hpp"
 #include "io/ply.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm::fuzz {
 

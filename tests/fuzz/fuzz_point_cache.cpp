@@ -6,8 +6,8 @@
 
 #include "fuzz_targets.hpp"
 #include "io/point_cache.hpp"
-#include "mesh/coordinate_limit.hpp"
-#include "mesh/errors.hpp"
+#include "core/coordinate_limit.hpp"
+#include "core/errors.hpp"
 
 namespace sm::fuzz {
 

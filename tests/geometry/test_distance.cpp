@@ -6,7 +6,7 @@
 #include <tbb/global_control.h>
 
 #include "geometry/distance.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 
 using namespace sm;

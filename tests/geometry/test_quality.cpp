@@ -4,7 +4,7 @@
 #include <random>
 
 #include "geometry/quality.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 
 using namespace sm;

@@ -9,7 +9,7 @@
 
 #include "geometry/distance.hpp"
 #include "geometry/sample_budget.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/error_of.hpp"
 

@@ -8,7 +8,7 @@
 #include <Eigen/SVD>
 
 #include "geometry/shear.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 
 using namespace sm;

@@ -5,7 +5,7 @@
 #include "geometry/bvh.hpp"
 #include "geometry/closest_point.hpp"
 #include "geometry/surface_walk.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "mesh/topology.hpp"
 #include "support/brute_force_closest.hpp"

@@ -8,7 +8,7 @@
 #include <functional>
 
 #include "io/atomic_file.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace sm;

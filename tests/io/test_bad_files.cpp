@@ -17,7 +17,7 @@
 #include "io/obj.hpp"
 #include "io/off.hpp"
 #include "io/ply.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

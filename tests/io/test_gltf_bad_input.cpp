@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "io/atomic_file.hpp"
-#include "io/gltf_load.hpp"
-#include "mesh/errors.hpp"
+#include "io/gltf/gltf_load.hpp"
+#include "core/errors.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"
 

@@ -3,9 +3,9 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
-#include "io/gltf_load.hpp"
-#include "io/gltf_write.hpp"
-#include "mesh/errors.hpp"
+#include "io/gltf/gltf_load.hpp"
+#include "io/gltf/gltf_write.hpp"
+#include "core/errors.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"
 

@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "io/gltf_accessor.hpp"
-#include "io/gltf_animation.hpp"
-#include "io/gltf_load.hpp"
+#include "io/gltf/gltf_accessor.hpp"
+#include "io/gltf/gltf_animation.hpp"
+#include "io/gltf/gltf_load.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"
 

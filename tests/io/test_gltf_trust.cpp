@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
-#include "io/gltf_file.hpp"
-#include "io/gltf_load.hpp"
-#include "io/gltf_resource.hpp"
-#include "mesh/errors.hpp"
+#include "io/gltf/gltf_file.hpp"
+#include "io/gltf/gltf_load.hpp"
+#include "io/gltf/gltf_resource.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"

@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 #include <cstring>
 
-#include "io/gltf_load.hpp"
-#include "io/gltf_weld.hpp"
+#include "io/gltf/gltf_load.hpp"
+#include "io/gltf/gltf_weld.hpp"
 #include "mesh/topology.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"

@@ -3,9 +3,9 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
-#include "io/gltf_accessor.hpp"
-#include "io/gltf_load.hpp"
-#include "io/gltf_write.hpp"
+#include "io/gltf/gltf_accessor.hpp"
+#include "io/gltf/gltf_load.hpp"
+#include "io/gltf/gltf_write.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"
 

@@ -13,7 +13,7 @@
 #include "io/off.hpp"
 #include "io/ply.hpp"
 #include "io/sha256.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

@@ -15,11 +15,11 @@
 #include <string>
 
 #include "io/atomic_file.hpp"
-#include "io/gltf_load.hpp"
+#include "io/gltf/gltf_load.hpp"
 #include "io/obj.hpp"
 #include "io/off.hpp"
 #include "io/ply.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 
 namespace {

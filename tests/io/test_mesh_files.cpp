@@ -9,7 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/frame_folder.hpp"
 #include "io/mesh_file.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"

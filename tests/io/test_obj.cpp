@@ -5,7 +5,7 @@
 #include <string>
 
 #include "io/obj.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

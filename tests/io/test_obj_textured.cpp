@@ -4,7 +4,7 @@
 
 #include "io/obj.hpp"
 #include "io/obj_textured.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 
 using namespace sm;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "io/obj.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
@@ -106,7 +106,7 @@ TEST_CASE("a moved statement written on several lines becomes one line", "[obj][
 TEST_CASE("positions round-trip bit-exactly", "[obj][write]") {
   TriMesh m;
   m.V.resize(6, 3);
-  // Up to 1e18 in magnitude: readers refuse larger coordinates (mesh/coordinate_limit.hpp).
+  // Up to 1e18 in magnitude: readers refuse larger coordinates (core/coordinate_limit.hpp).
   m.V << 0.1, -0.0, 1e-300, 5e-324, 1e18, -M_PI,                                     //
       1.0 / 3.0, 2.5e-7, -9.87654321e17, 123456789.123456789, -1e-5, 0.30000000000000004,  //
       0, 0, 0, 1, 1, 1;

@@ -6,7 +6,7 @@
 
 #include "io/off.hpp"
 #include "io/ply.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"

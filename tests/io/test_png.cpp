@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "io/png.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 using namespace sm;
 

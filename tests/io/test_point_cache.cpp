@@ -10,7 +10,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/point_cache.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

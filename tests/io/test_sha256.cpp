@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "io/sha256.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace sm;

@@ -4,7 +4,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/vertex_weights.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 

@@ -5,7 +5,7 @@
 #include "geometry/surface_walk.hpp"
 #include "massage/correspondence.hpp"
 #include "massage/massage.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
 #include "support/brute_force_closest.hpp"
 

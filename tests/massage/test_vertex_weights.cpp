@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "massage/massage.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "support/drift.hpp"
 #include "support/error_of.hpp"
 

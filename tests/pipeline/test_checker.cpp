@@ -5,7 +5,7 @@
 
 #include "io/obj.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/checker.hpp"
+#include "pipeline/outputs/checker.hpp"
 
 using namespace sm;
 

@@ -6,7 +6,7 @@
 
 #include "geometry/ground_truth.hpp"
 #include "massage/massage.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 
 using namespace sm;
 

@@ -5,7 +5,7 @@
 
 #include "mesh/primitives.hpp"
 #include "mesh/topology.hpp"
-#include "pipeline/fold_check.hpp"
+#include "pipeline/sequence/fold_check.hpp"
 
 using namespace sm;
 

@@ -9,8 +9,8 @@
 #include "massage/massage.hpp"
 #include "mesh/primitives.hpp"
 #include "mesh/topology.hpp"
-#include "pipeline/fold_check.hpp"
-#include "pipeline/fold_repair.hpp"
+#include "pipeline/sequence/fold_check.hpp"
+#include "pipeline/sequence/fold_repair.hpp"
 
 using namespace sm;
 

@@ -6,9 +6,9 @@
 
 #include "io/atomic_file.hpp"
 #include "io/sha256.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/frame_record.hpp"
+#include "pipeline/cluster/frame_record.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace sm;

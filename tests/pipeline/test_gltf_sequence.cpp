@@ -7,12 +7,12 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
-#include "io/gltf_file.hpp"
+#include "io/gltf/gltf_file.hpp"
 #include "io/obj.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/topology.hpp"
-#include "pipeline/report.hpp"
-#include "pipeline/sequence_job.hpp"
+#include "pipeline/report/report.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
 #include "support/error_of.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"

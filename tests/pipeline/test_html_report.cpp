@@ -8,9 +8,9 @@
 
 #include "io/atomic_file.hpp"
 #include "io/obj.hpp"
-#include "pipeline/html_page.hpp"
-#include "pipeline/html_sequence.hpp"
-#include "pipeline/sequence_job.hpp"
+#include "pipeline/report/html_page.hpp"
+#include "pipeline/report/html_sequence.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"
 

@@ -4,10 +4,10 @@
 #include <sstream>
 
 #include "io/csv.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/measures.hpp"
-#include "pipeline/mesh_report.hpp"
+#include "pipeline/mesh_jobs/measures.hpp"
+#include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "support/job_meshes.hpp"
 
 using namespace sm;

@@ -8,10 +8,10 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
-#include "mesh/errors.hpp"
-#include "pipeline/merge.hpp"
-#include "pipeline/output_lock.hpp"
-#include "pipeline/sequence_job.hpp"
+#include "core/errors.hpp"
+#include "pipeline/cluster/merge.hpp"
+#include "pipeline/cluster/output_lock.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
 #include "support/error_of.hpp"
 #include "support/gltf_models.hpp"
 #include "support/sequence_fixture.hpp"

@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "io/csv.hpp"
-#include "pipeline/output_distortion.hpp"
-#include "pipeline/report.hpp"
+#include "pipeline/outputs/output_distortion.hpp"
+#include "pipeline/report/report.hpp"
 
 using namespace sm;
 

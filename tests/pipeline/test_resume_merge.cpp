@@ -4,11 +4,11 @@
 #include <catch2/catch.hpp>
 
 #include "io/atomic_file.hpp"
-#include "mesh/errors.hpp"
-#include "pipeline/frame_record.hpp"
-#include "pipeline/merge.hpp"
-#include "pipeline/sequence_job.hpp"
-#include "pipeline/shard.hpp"
+#include "core/errors.hpp"
+#include "pipeline/cluster/frame_record.hpp"
+#include "pipeline/cluster/merge.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/cluster/shard.hpp"
 #include "support/gltf_models.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "pipeline/run_text.hpp"
+#include "pipeline/report/run_text.hpp"
 
 using namespace sm;
 

@@ -4,9 +4,9 @@
 #include <fstream>
 
 #include "io/atomic_file.hpp"
-#include "mesh/errors.hpp"
-#include "pipeline/sequence_job.hpp"
-#include "pipeline/synthetic.hpp"
+#include "core/errors.hpp"
+#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"
 

@@ -4,9 +4,9 @@
 
 #include "geometry/shear.hpp"
 #include "io/ply.hpp"
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/shear_ply.hpp"
+#include "pipeline/outputs/shear_ply.hpp"
 
 using namespace sm;
 using Rgb = std::array<uint8_t, 3>;

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "io/obj.hpp"
-#include "mesh/errors.hpp"
-#include "pipeline/synthetic.hpp"
+#include "core/errors.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace sm;

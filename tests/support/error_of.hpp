@@ -2,7 +2,7 @@
 /// The message of the exception a call throws, for tests that check error messages word for word.
 #include <string>
 
-#include "mesh/errors.hpp"
+#include "core/errors.hpp"
 
 namespace sm::test {
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "io/atomic_file.hpp"
-#include "pipeline/sequence_options.hpp"
-#include "pipeline/synthetic.hpp"
+#include "pipeline/sequence/sequence_options.hpp"
+#include "pipeline/sequence/synthetic.hpp"
 
 namespace sm::test {
 
