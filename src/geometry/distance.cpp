@@ -21,6 +21,8 @@ namespace {
 // Samples of the adaptive coarse pass per task, in index order (fixed, so that nothing depends
 // on the number of threads).
 constexpr int kCoarseChunk = 512;
+// How many points ahead the coarse pass fetches grid cells.
+constexpr int kFetchAhead = 4;
 
 struct Partial {
   double max = 0.0, sum = 0.0, sum2 = 0.0;
@@ -144,7 +146,18 @@ void coarse_samples(int count, std::vector<double>& out, const ExactQuery& query
   tbb::parallel_for(tbb::blocked_range<int>(0, chunks), [&](const tbb::blocked_range<int>& r) {
     for (int c = r.begin(); c != r.end(); ++c) {
       int previous = -1;
-      for (int i = c * kCoarseChunk, end = std::min(count, i + kCoarseChunk); i < end; ++i) {
+      const int first = c * kCoarseChunk, end = std::min(count, first + kCoarseChunk);
+      // The grid cells of the points a few steps ahead are fetched while this one is answered
+      // (first their offsets, then, two steps later, their entries).
+      const auto fetch = [&](int i, bool entries) {
+        Vec3 q;
+        int ignored = -1;
+        if (i < end && point(i, q, ignored)) query.grid.prefetch(q, entries);
+      };
+      for (int i = first; i < std::min(end, first + kFetchAhead); ++i) fetch(i, false);
+      for (int i = first; i < end; ++i) {
+        fetch(i + kFetchAhead, false);
+        fetch(i + kFetchAhead / 2, true);
         Vec3 q;
         int hint = previous;
         if (!point(i, q, hint)) {

@@ -1,6 +1,7 @@
 #include "geometry/sample_budget.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/errors.hpp"
@@ -86,6 +87,35 @@ void check_sample_budget(double samples, long triangles, double spacing, bool up
 
 void check_distance_samples(const TriMesh& A, const DistanceLayout& layout,
                             const DistanceOptions& options, const std::string& what) {
+  // Most meshes are far within the budget: a bound from the longest edge (every triangle counted
+  // as one with three edges that long, which takes at least as many samples) settles it without
+  // the exact count, which costs a square root per edge and per level. Refused only by the
+  // exact count, as before.
+  const int m = A.num_triangles();
+  double longest2 = 0.0;
+  for (int t = 0; t < m; ++t)
+    for (int k = 0; k < 3; ++k)
+      longest2 = std::max(longest2,
+                          (A.vertex(A.F(t, (k + 1) % 3)) - A.vertex(A.F(t, k))).squaredNorm());
+  if (m > 0 && std::isfinite(longest2)) {
+    const double h = options.spacing * layout.mean_edge_length(A.V);
+    const double l = std::sqrt(longest2);
+    const auto per_triangle = [&](double spacing, bool centroid) {
+      const double edge = double(sample_divisions(l, spacing, kMaxEdgeSegments) - 1);
+      const double d = double(sample_divisions(l, spacing, kMaxFaceDivisions));
+      return (options.sample_edges ? 3.0 * edge : 0.0) +
+             (!options.sample_faces ? 0.0
+                                    : d < 3.0 ? (centroid ? 1.0 : 0.0) : (d - 1.0) * (d - 2.0) / 2.0);
+    };
+    const double bound = options.adaptive
+                             ? double(A.num_vertices()) + double(m) +
+                                   (options.sample_edges || options.sample_faces
+                                        ? double(m) * (per_triangle(2.0 * h, false) +
+                                                       per_triangle(h, false))
+                                        : 0.0)
+                             : double(A.num_vertices()) + double(m) * per_triangle(h, true);
+    if (bound <= distance_sample_budget(m)) return;
+  }
   check_sample_budget(distance_sample_count(A, layout, options), A.num_triangles(),
                       options.spacing, options.adaptive, what);
 }

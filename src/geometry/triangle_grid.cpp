@@ -147,7 +147,18 @@ void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triang
                   oz = 0.5f * (dz + std::fabs(dz));
       d2[i] = ox * ox + oy * oy + oz * oz;
     }
+    // The boxes within reach, then their frames fetched together: the frames are read at
+    // random, and waiting for one cache miss after the other dominated the scan. The limit only
+    // shrinks, so testing it again below tests exactly the triangles tested one by one.
+    int near[kChunk];
+    int num_near = 0;
     for (int i = 0; i < count; ++i) {
+      near[num_near] = i;
+      num_near += d2[i] < limit;
+    }
+    for (int k = 0; k < num_near; ++k) planes_->prefetch(triangle_[begin + near[k]]);
+    for (int k = 0; k < num_near; ++k) {
+      const int i = near[k];
       if (!(d2[i] < limit)) continue;
       const int t = triangle_[begin + i];
       if (t == best_triangle || t == skip[0] || t == skip[1] || t == skip[2]) continue;
@@ -158,6 +169,25 @@ void TriangleGrid::scan(int cell, const Vec3& p, double& best2, int& best_triang
       }
     }
   }
+}
+
+void TriangleGrid::prefetch(const Vec3& p, bool entries) const {
+  if (cells_.empty()) return;
+  int c[3];
+  for (int a = 0; a < 3; ++a) {
+    const double g = (p[a] - origin_[a]) * inv_cell_;
+    if (!(g >= 0.0 && g < dims_[a])) return;
+    c[a] = static_cast<int>(g);
+  }
+  const int cell = cell_index(c[0], c[1], c[2]);
+  if (!entries) {
+    __builtin_prefetch(&cells_[cell]);
+    return;
+  }
+  const int begin = cells_[cell];
+  if (begin == cells_[cell + 1]) return;
+  __builtin_prefetch(&triangle_[begin]);
+  for (const std::vector<float>& b : box_) __builtin_prefetch(&b[begin]);
 }
 
 bool TriangleGrid::closest(const Vec3& p, double& best2, int& best_triangle, int hint) const {

@@ -39,6 +39,11 @@ class TriangleGrid {
   /// as TriangleBvh::closest with bound best2. Thread-safe: const, allocation-free.
   bool closest(const Vec3& p, double& best2, int& best_triangle, int hint = -1) const;
 
+  /// Hints the processor to bring what closest(p) reads first into the cache, for a query a few
+  /// steps ahead: `entries` false, the cell's offsets (p's cell is read at random); true, its
+  /// first entries (read through the offsets, so after those have been fetched).
+  void prefetch(const Vec3& p, bool entries) const;
+
   bool empty() const { return cells_.empty(); }
   double cell_size() const { return cell_; }
 

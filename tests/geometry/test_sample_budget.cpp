@@ -109,3 +109,34 @@ TEST_CASE("a spacing beyond the sample budget is a config error naming the key a
   CHECK(distance_sample_budget(8) == 50e6);
   CHECK(distance_sample_budget(2'000'000) == 200e6);
 }
+
+TEST_CASE("the budget refuses exactly the spacings whose count exceeds it", "[distance]") {
+  // A grid with one corner pulled far out (two long needles among small triangles), so that a
+  // bound from the longest edge and the exact count disagree over a range of spacings: the
+  // refusal must follow the exact count, on both sides of the budget.
+  TriMesh a = make_grid(20, 20, 1.0, 1.0);
+  a.V.row(0) = Eigen::RowVector3d(-300.0, -200.0, 0.0);
+  const TriangleBvh bvh(raised(a, 0.5));
+  const DistanceLayout layout(a.F, a.num_vertices());
+  for (const bool adaptive : {false, true}) {
+    int refused = 0, accepted = 0;
+    for (double spacing = 1.0; spacing > 1e-6; spacing *= 0.8) {
+      DistanceOptions o;
+      o.adaptive = adaptive;
+      o.spacing = spacing;
+      const double count = distance_sample_count(a, layout, o);
+      const bool over = count > distance_sample_budget(a.num_triangles());
+      CAPTURE(adaptive, spacing, count);
+      bool threw = false;
+      try {
+        check_distance_samples(a, layout, o, "the sampled mesh");
+      } catch (const ConfigError&) {
+        threw = true;
+      }
+      CHECK(threw == over);
+      (over ? refused : accepted) += 1;
+    }
+    CHECK(refused > 0);
+    CHECK(accepted > 0);
+  }
+}
