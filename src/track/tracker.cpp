@@ -265,6 +265,8 @@ TrackFrame Tracker::track(const TriMesh& raw_mesh) {
       if (fresh.excess < best.excess) best = std::move(fresh);
     }
     best.frame.status = best.excess <= 1.0 ? TrackStatus::Recovered : TrackStatus::Lost;
+  } else if (best.excess > 1.0) {
+    best.frame.status = TrackStatus::Lost;  // without recovery: beyond the tolerances is lost
   }
   best.frame.iterations = iterations;
   if (best.frame.status != TrackStatus::Lost) {
