@@ -231,6 +231,41 @@ TEST_CASE("track job: same bytes with 1 and 2 threads; a clean template mesh; PC
   CHECK(outputs[0]["sequence.pc2"].size() == 32 + size_t(5) * clean.num_vertices() * 12);
 }
 
+TEST_CASE("track job: a template split along seams keeps its split vertices together",
+          "[track][job]") {
+  TempDir dir("track_job_seams");
+  const Capture c = write_capture(dir / "raw", bending_limb(0.5, 0.02), 4, 13);
+  // Frame 0's mesh written non-indexed (every triangle its own three vertices), as capture
+  // software splits vertices along texture seams.
+  const TriMesh& t = c.templ.mesh;
+  TriMesh split{Positions(3 * t.num_triangles(), 3), Triangles(t.num_triangles(), 3)};
+  std::vector<int> original(size_t(3 * t.num_triangles()));
+  for (int f = 0; f < t.num_triangles(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      split.V.row(3 * f + k) = t.V.row(t.F(f, k));
+      split.F(f, k) = 3 * f + k;
+      original[size_t(3 * f + k)] = t.F(f, k);
+    }
+  write_mesh(dir / "split.ply", split);
+  const TrackResult r = run_track_job(plan_track_job(
+      job(dir / "raw", dir / "out", R"(, "template": {"mesh": ")" + (dir / "split.ply").string() +
+                                        R"("})")));
+  CHECK(r.lost == 0);
+  const double h = mean_edge_length(t);
+  for (int k = 0; k < 4; ++k) {
+    INFO("frame " << k);
+    const TriMesh out = read_mesh(dir / "out/frames" / frame_name(k, "obj"));
+    REQUIRE(out.num_vertices() == split.num_vertices());
+    CHECK(out.F == split.F);
+    // Every copy of a vertex at the position of the vertex's first copy, near the truth.
+    Positions welded(t.num_vertices(), 3);
+    for (int i = 0; i < out.num_vertices(); ++i) welded.row(original[size_t(i)]) = out.V.row(i);
+    for (int i = 0; i < out.num_vertices(); ++i)
+      CHECK(out.V.row(i) == welded.row(original[size_t(i)]));
+    CHECK(truth_error(welded, c, k, h) < 0.35);
+  }
+}
+
 TEST_CASE("track job: bad input is refused with the file, frame and key", "[track][job]") {
   TempDir dir("track_job_errors");
   CHECK(error_of<IoError>([&] { plan_track_job(job(dir / "missing", dir / "out")); }) ==
