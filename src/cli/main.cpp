@@ -30,6 +30,7 @@
 #include "pipeline/report/run_text.hpp"
 #include "pipeline/sequence/sequence_job.hpp"
 #include "pipeline/cluster/shard.hpp"
+#include "pipeline/track/track_job.hpp"
 
 namespace {
 
@@ -176,11 +177,14 @@ void print_results(const fs::path& dir, const std::vector<std::string>& names) {
 }
 
 int run_mesh_job(const Args& args, sm::MeshJobOptions config);
+int run_track(const Args& args, sm::TrackJobOptions config);
 
 int run(const Args& args) {
   sm::AnyJobOptions any = sm::load_any_config(args.config);
   if (auto* mesh_job = std::get_if<sm::MeshJobOptions>(&any))
     return run_mesh_job(args, std::move(*mesh_job));
+  if (auto* track_job = std::get_if<sm::TrackJobOptions>(&any))
+    return run_track(args, std::move(*track_job));
   sm::SequenceJobOptions config = std::get<sm::SequenceJobOptions>(std::move(any));
   if (args.threads) config.threads = *args.threads;
   if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
@@ -267,6 +271,71 @@ int run_mesh_job(const Args& args, sm::MeshJobOptions config) {
   if (!result.ok()) {
     std::cerr << "seqmassage: the optimizer failed, no mesh written: " << result.massage.failure
               << " (see " << shown(out / "report.json") << ")\n";
+    return kProcessing;
+  }
+  return kOk;
+}
+
+// The track job: frames in order, one progress line each; lost frames are listed and end the
+// run with the processing exit code, like failed frames of a sequence.
+int run_track(const Args& args, sm::TrackJobOptions config) {
+  for (const auto& [given, option] :
+       {std::pair{args.shard.has_value(), "--shard"}, std::pair{args.resume, "--resume"}})
+    if (given)
+      throw sm::ConfigError(std::string(option) + ": not available for \"job\": \"track\" yet");
+  if (args.threads) config.threads = *args.threads;
+  if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
+  const sm::TrackPlan plan = sm::plan_track_job(config);
+  if (args.dry_run) {
+    std::cout << sm::describe_track_plan(plan) << "dry run: nothing written\n";
+    return kOk;
+  }
+  if (!args.quiet)
+    for (const std::string& w : plan.warnings) std::cerr << "seqmassage: warning: " << w << "\n";
+  sm::TrackHooks hooks;
+  hooks.cancel = &sm::cli::stop_requested();
+  hooks.progress = [&](const sm::TrackRow& r, int done, int total, double elapsed) {
+    if (args.quiet && r.status != sm::TrackStatus::Lost) return;
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "frame %d (%s) %d/%d: %s, to raw %.3f, from raw %.3f (p99 %.2f), folded %d, "
+                  "%.0f s",
+                  r.frame, r.file.c_str(), done, total,
+                  std::string(sm::name_of(r.status, sm::kTrackStatusNames)).c_str(),
+                  r.fit.to_raw_mean, r.fit.from_raw_mean, r.fit.from_raw_p99, r.fit.folded,
+                  elapsed);
+    std::cerr << "seqmassage: " << line << "\n";
+  };
+  sm::cli::catch_stop_signals(true);
+  const sm::TrackResult result = sm::run_track_job(plan, hooks);
+  sm::cli::catch_stop_signals(false);
+  const fs::path& out = plan.config.output.dir;
+  if (!args.quiet) {
+    std::cerr << "seqmassage: tracked " << result.frames.size() << " frames (" << result.lost
+              << " lost, " << result.recovered << " recovered) in " << std::lround(result.seconds)
+              << " s\n";
+    std::vector<std::string> names;
+    for (const auto& output : plan.outputs.outputs)
+      for (const std::string& n : output->results().before_records) names.push_back(n);
+    names.push_back("summary.csv");
+    names.push_back("report.json");
+    print_results(out, names);
+  }
+  if (result.interrupted) {
+    const int sig = sm::cli::stop_signal();
+    std::cerr << "seqmassage: " << sm::cli::stopped_text(sig) << " after " << result.frames.size()
+              << " of " << plan.selected.size() << " frames; they are written and listed in "
+              << shown(out / "summary.csv") << "\n";
+    return sm::cli::stopped_exit_code(sig);
+  }
+  if (result.lost > 0) {
+    for (const sm::TrackRow& r : result.frames)
+      if (r.status == sm::TrackStatus::Lost)
+        std::cerr << "seqmassage: frame " << r.frame << " (" << r.file << ") lost: " << r.beyond
+                  << "\n";
+    std::cerr << "seqmassage: " << result.lost << " of " << result.frames.size()
+              << " frames lost (written as their best attempt; see " << shown(out / "summary.csv")
+              << ")\n";
     return kProcessing;
   }
   return kOk;

@@ -132,6 +132,30 @@ void read_mesh_job_input(const json& doc, MeshJobOptions& c, const fs::path& bas
                                         "the crossparam template is a \"mesh\" file");
 }
 
+// The rules across keys of the track job.
+void validate_track(const json& doc, const TrackJobOptions& c) {
+  const json& templ = member(doc, "template");
+  if (has(templ, "frame") && has(templ, "mesh"))
+    fail_at("template", "give \"frame\" or \"mesh\", not both");
+  const json& output = doc.at("output");
+  if (c.output.format == OutputFormat::Gltf)
+    fail_at("output.format",
+            "\"gltf\" needs a glTF input to rebuild; the track job writes \"obj\" frames, or "
+            "\"pc2\" / \"mdd\" with rest.obj");
+  if (has(output, "gltf")) fail_at("output.gltf", "only applies to output.format \"gltf\"");
+  if (has(output, "point_cache") && !point_cache_format(c.output.format))
+    fail_at("output.point_cache", "only applies to output.format \"pc2\" or \"mdd\"");
+  if (c.output.on_failure == OnFailure::Skip)
+    fail_at("output.on_failure",
+            "\"skip\" is not for the track job: a lost frame is written as its best attempt and "
+            "listed in report.json");
+  if (has(member(doc, "massage"), "iterations") &&
+      c.massage.iterations != c.track.refine_iterations)
+    fail_at("massage.iterations",
+            "the track job's refinement runs track.refine_iterations iterations (" +
+                std::to_string(c.track.refine_iterations) + "); set that instead");
+}
+
 }  // namespace
 
 JobKind parse_job_kind(const json& document) {
@@ -139,7 +163,8 @@ JobKind parse_job_kind(const json& document) {
   static const FieldInfo job{"job", choice(kJobKindNames), {}, {}};
   if (!has(document, "job"))
     fail_at("job",
-            "missing (the kind of job: \"sequence\", \"remesh\", \"crossparam\", or \"smooth\")");
+            "missing (the kind of job: \"sequence\", \"remesh\", \"crossparam\", \"smooth\", or "
+            "\"track\")");
   JobKind kind = JobKind::Sequence;
   read_value(document.at("job"), "job", {&job, options_detail::make_ref(kind)}, {}, {});
   return kind;
@@ -157,8 +182,8 @@ MeshJobOptions parse_mesh_job_config(const json& document, const fs::path& base_
   const fs::path base = fs::absolute(base_dir).lexically_normal();
   MeshJobOptions c;
   c.job = parse_job_kind(document);
-  if (c.job == JobKind::Sequence)
-    fail_at("job", "\"sequence\" is not a single-mesh job (use parse_config)");
+  if (c.job == JobKind::Sequence || c.job == JobKind::Track)
+    fail_at("job", "\"" + job_name(c.job) + "\" is not a single-mesh job");
   c.massage = default_massage_options(c.job);
   check_keys(document, "", keys_of(entries_of(c)));
   read_mesh_job_input(document, c, base);
@@ -166,8 +191,18 @@ MeshJobOptions parse_mesh_job_config(const json& document, const fs::path& base_
   return c;
 }
 
+TrackJobOptions parse_track_config(const json& document, const fs::path& base_dir) {
+  TrackJobOptions c;
+  read_options(document, c, fs::absolute(base_dir).lexically_normal());
+  validate_track(document, c);
+  c.massage.iterations = c.track.refine_iterations;  // as report.json's resolved config says
+  return c;
+}
+
 AnyJobOptions parse_any_config(const json& document, const fs::path& base_dir) {
-  if (parse_job_kind(document) == JobKind::Sequence) return parse_config(document, base_dir);
+  const JobKind kind = parse_job_kind(document);
+  if (kind == JobKind::Sequence) return parse_config(document, base_dir);
+  if (kind == JobKind::Track) return parse_track_config(document, base_dir);
   return parse_mesh_job_config(document, base_dir);
 }
 

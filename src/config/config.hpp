@@ -12,11 +12,12 @@
 #include "io/options_json.hpp"
 #include "pipeline/mesh_jobs/mesh_job_options.hpp"
 #include "pipeline/sequence/sequence_options.hpp"
+#include "pipeline/track/track_job_options.hpp"
 
 namespace sm {
 
 /// Any job's options.
-using AnyJobOptions = std::variant<SequenceJobOptions, MeshJobOptions>;
+using AnyJobOptions = std::variant<SequenceJobOptions, MeshJobOptions, TrackJobOptions>;
 
 /// Maps a parsed config onto the sequence job's options; relative paths are made absolute
 /// against `base_dir`. Besides the tables' checks: exactly one input kind ("frames", "synthetic",
@@ -32,10 +33,18 @@ SequenceJobOptions parse_config(const nlohmann::json& json, const std::filesyste
 MeshJobOptions parse_mesh_job_config(const nlohmann::json& json,
                                      const std::filesystem::path& base_dir);
 
+/// The same for the track job: a template "frame" or "mesh" (not both); output.format "obj",
+/// "pc2" or "mdd" (no glTF input to rebuild a GLB from); no output.on_failure "skip" (a lost
+/// frame is written as its best attempt); massage.iterations, if given, equal to
+/// track.refine_iterations (which it is set to).
+TrackJobOptions parse_track_config(const nlohmann::json& json,
+                                   const std::filesystem::path& base_dir);
+
 /// The job kind named by "job" (required; ConfigError with the nearest kind for a typo).
 JobKind parse_job_kind(const nlohmann::json& document);
 
-/// Dispatches on "job": parse_config for "sequence", parse_mesh_job_config for the others.
+/// Dispatches on "job": parse_config for "sequence", parse_track_config for "track",
+/// parse_mesh_job_config for the others.
 AnyJobOptions parse_any_config(const nlohmann::json& json, const std::filesystem::path& base_dir);
 
 /// Reads and checks a config file; relative paths resolve against the file's folder. Throws

@@ -116,6 +116,19 @@ for crossparam; its other keys are unknown keys here.
 
 )";
 
+constexpr const char* kTrack = R"(
+## `"job": "track"`
+
+Tracks one template through a folder of raw frames of any connectivity (an untracked capture:
+every frame its own vertices and triangles) and writes the template's connectivity on every
+frame through the sequence job's outputs; see [tracking](tracking.md). A minimal config:
+
+```json
+{ "job": "track", "input": { "frames": "capture/take1" }, "template": { "frame": 0 }, "output": { "dir": "out/take1" } }
+```
+
+)";
+
 constexpr const char* kMassage = R"(
 ## `massage` (every job)
 
@@ -137,6 +150,9 @@ std::string config_reference() {
   table(out, "", {"default"}, {entries_of(sequence)}, {"massage"});
   out << kMeshJobs;
   table(out, "", {"default"}, {entries_of(mesh)}, {"massage"});
+  TrackJobOptions track;
+  out << kTrack;
+  table(out, "", {"default"}, {entries_of(track)}, {"massage"});
   out << kMassage;
   table(out, "massage", {"default (sequence, remesh, crossparam)", "default (smooth)"},
         {entries_of(massage), entries_of(smooth)}, {});

@@ -12,6 +12,7 @@
 #include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "pipeline/report/report.hpp"
 #include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/track/track_job.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 
@@ -135,6 +136,13 @@ nlohmann::json run_mesh(const MeshJobOptions& config) {
   return make_mesh_report(plan, run_mesh_job(plan));
 }
 
+// The track job; its frames are not reported through progress.
+nlohmann::json run_track(const TrackJobOptions& config) {
+  py::gil_scoped_release unlocked;
+  const TrackPlan plan = plan_track_job(config);
+  return make_track_report(plan, run_track_job(plan));
+}
+
 }  // namespace
 
 void bind_jobs(py::module_& m) {
@@ -153,8 +161,11 @@ void bind_jobs(py::module_& m) {
         }
         const nlohmann::json report = std::visit(
             [&progress](const auto& options) {
-              if constexpr (std::is_same_v<std::decay_t<decltype(options)>, SequenceJobOptions>)
+              using T = std::decay_t<decltype(options)>;
+              if constexpr (std::is_same_v<T, SequenceJobOptions>)
                 return run_sequence(options, progress);
+              else if constexpr (std::is_same_v<T, TrackJobOptions>)
+                return run_track(options);
               else
                 return run_mesh(options);
             },

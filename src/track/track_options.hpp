@@ -34,6 +34,7 @@ struct TrackOptions {
   int samples = 4000;               ///< "samples": correspondences per direction, at most
   bool extrapolate = true;          ///< "extrapolate": start from the last motion continued
   int refine_iterations = 15;       ///< "refine_iterations": Mesh Massage toward the raw frame
+  bool project = false;             ///< "project": last, each vertex onto the raw frame
   double lost_distance = 0.2;       ///< "lost_distance": mean distance (both ways) beyond: lost
   double lost_distance_p99 = 3.0;   ///< "lost_distance_p99": 99th percentile beyond: lost
   double lost_folded_fraction = 0.01;  ///< "lost_folded_fraction": folded triangles beyond: lost
@@ -86,6 +87,9 @@ inline const Fields<TrackOptions>& fields_of<TrackOptions>() {
       field<&O::refine_iterations>("refine_iterations", at_least(0),
                                    "Mesh Massage iterations toward the raw frame after the "
                                    "registration (T = template, N = frame); 0: registration only"),
+      field<&O::project>("project", any_value(),
+                         "last, move every vertex to its closest point on the raw frame (after "
+                         "the refinement), so that the result lies on the captured surface"),
       field<&O::lost_distance>("lost_distance", above(0),
                                "a frame whose mean distance to the raw frame, or the raw frame's "
                                "to it, exceeds this (mean edge lengths) is `lost`"),

@@ -242,9 +242,17 @@ TrackFrame Tracker::track(const TriMesh& raw_mesh) {
       a.frame.refine_ok = r.ok && r.V.allFinite();
       if (a.frame.refine_ok) a.frame.V = std::move(r.V);
     }
+    if (o.project) {
+      Positions& V = a.frame.V;
+      tbb::parallel_for(0, static_cast<int>(V.rows()), [&](int v) {
+        const SurfacePoint p = raw.reference->bvh().closest(V.row(v).transpose());
+        if (p.triangle >= 0) V.row(v) = p.point.transpose();
+      });
+    }
     a.frame.seconds_refine = seconds_since(t1);
     a.frame.registration_fit = measure_fit(s.templ, a.frame.registered, raw, s.h);
-    a.frame.fit = s.massager ? measure_fit(s.templ, a.frame.V, raw, s.h) : a.frame.registration_fit;
+    a.frame.fit = s.massager || o.project ? measure_fit(s.templ, a.frame.V, raw, s.h)
+                                          : a.frame.registration_fit;
     a.excess = excess(a.frame.fit, o, m);
     return a;
   };
@@ -265,6 +273,8 @@ TrackFrame Tracker::track(const TriMesh& raw_mesh) {
       if (fresh.excess < best.excess) best = std::move(fresh);
     }
     best.frame.status = best.excess <= 1.0 ? TrackStatus::Recovered : TrackStatus::Lost;
+  } else if (best.excess > 1.0) {
+    best.frame.status = TrackStatus::Lost;  // without recovery: beyond the tolerances is lost
   }
   best.frame.iterations = iterations;
   if (best.frame.status != TrackStatus::Lost) {

@@ -395,9 +395,7 @@ TEST_CASE("every example config in configs/ parses") {
     if (entry.path().extension() != ".json") continue;
     INFO(entry.path().string());
     const AnyJobOptions any = load_any_config(entry.path());
-    const fs::path& dir = std::holds_alternative<SequenceJobOptions>(any)
-                              ? std::get<SequenceJobOptions>(any).output.dir
-                              : std::get<MeshJobOptions>(any).output.dir;
+    const fs::path dir = std::visit([](const auto& job) { return job.output.dir; }, any);
     CHECK(dir.is_absolute());
     ++parsed;
   }

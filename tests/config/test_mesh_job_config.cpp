@@ -166,10 +166,11 @@ TEST_CASE("parse_any_config dispatches on the job kind") {
 
 TEST_CASE("bad single-mesh configs name the key") {
   CHECK(config_error(R"({"job": "smoth", "input": {"mesh": "m.obj"}, "output": {"dir": "o"}})") ==
-        "job: expected \"sequence\", \"remesh\", \"crossparam\", or \"smooth\", got \"smoth\" "
-        "(did you mean \"smooth\"?)");
+        "job: expected \"sequence\", \"remesh\", \"crossparam\", \"smooth\", or \"track\", got "
+        "\"smoth\" (did you mean \"smooth\"?)");
   CHECK(config_error(R"({"input": {"mesh": "m.obj"}, "output": {"dir": "o"}})") ==
-        "job: missing (the kind of job: \"sequence\", \"remesh\", \"crossparam\", or \"smooth\")");
+        "job: missing (the kind of job: \"sequence\", \"remesh\", \"crossparam\", \"smooth\", or "
+        "\"track\")");
   CHECK(config_error(R"({"job": "remesh", "input": {"mesh": "m.off"}, "output": {"dir": "o"}})") ==
         "input.reference: missing (the source surface the remesh approximates (.obj, .off or "
         ".ply))");

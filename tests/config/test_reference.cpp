@@ -120,7 +120,8 @@ TEST_CASE("config --complete spells out every key, keeping what the file gives a
 }
 
 TEST_CASE("configs/*_all_keys.json are what config --complete writes of them") {
-  for (const std::string name : {"sequence_all_keys.json", "remesh_all_keys.json"}) {
+  for (const std::string name :
+       {"sequence_all_keys.json", "remesh_all_keys.json", "track_all_keys.json"}) {
     INFO("configs/" << name << "; regenerate it: seqmassage config --complete configs/" << name
                     << " > new.json && mv new.json configs/" << name);
     const fs::path file = kRoot / "configs" / name;

@@ -66,3 +66,36 @@ def test_tracker_refuses_bad_options_and_frames():
     tracker = seqmassage.Tracker(vertices, triangles)
     with pytest.raises(seqmassage.InputError, match=r"frames\[0\]"):
         tracker.track([(vertices, triangles + 10 ** 6)])
+
+
+def write_obj(path, vertices, triangles):
+    lines = ["v %r %r %r" % tuple(p) for p in vertices.tolist()]
+    lines += ["f %d %d %d" % tuple(t + 1) for t in triangles]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def read_obj_positions(path):
+    return np.array([[float(x) for x in line.split()[1:4]]
+                     for line in path.read_text().splitlines() if line.startswith("v ")])
+
+
+def test_track_job_writes_what_the_tracker_returns(tmp_path):
+    """run_job({"job": "track"}) on a folder of OBJ frames writes, frame by frame, the positions
+    seqmassage.Tracker returns for the same frames, and reports their status."""
+    raw = tmp_path / "raw"
+    raw.mkdir()
+    frames = []
+    for k in range(4):
+        _, _, fv, ft = triangulate(k, 200 + k, cell=0.3)
+        write_obj(raw / ("frame_%d.obj" % k), fv, ft)
+        frames.append((fv, ft))
+    report = seqmassage.run_job({"job": "track", "input": {"frames": str(raw)},
+                                 "track": {"refine_iterations": 5},
+                                 "output": {"dir": str(tmp_path / "out"), "html": False}})
+    assert report["job"] == "track"
+    assert report["summary"]["frames"] == 4 and report["summary"]["lost"] == 0
+    tracker = seqmassage.Tracker(frames[0][0], frames[0][1], refine_iterations=5)
+    for k, r in enumerate(tracker.track(frames)):
+        written = read_obj_positions(tmp_path / "out" / "frames" / ("frame_%d.obj" % k))
+        np.testing.assert_array_equal(written, r["vertices"])
+        assert report["frames"][k]["status"] == r["status"]

@@ -118,6 +118,16 @@ TEST_CASE("tracker follows a rolling sheet at up to 10 edges per frame", "[track
   for (TrackStatus s : c.status) CHECK(s != TrackStatus::Lost);
 }
 
+TEST_CASE("track.project puts every vertex on the raw frame", "[track]") {
+  TrackOptions options;
+  options.project = true;
+  const CaseFigures c = run_case(bending_limb(/*speed=*/1.0, /*turn=*/0.03), 5, 0.25, 5, options);
+  print("limb, projected", c);
+  CHECK(c.to_raw_mean < 1e-9);  // the largest over the frames of the mean vertex distance
+  CHECK(c.error_mean < 0.35);
+  for (TrackStatus s : c.status) CHECK(s != TrackStatus::Lost);
+}
+
 TEST_CASE("a glitched frame is lost, a jump is recovered, tracking goes on", "[track]") {
   // Frame 4 is a capture glitch (every vertex thrown 6 units at random); from frame 8 on the
   // subject is 25 units away (a cut in the footage).

@@ -11,13 +11,15 @@ enum class JobKind {
   Remesh,      ///< "remesh": bring a remesh closer to its source surface (paper §3.3)
   Crossparam,  ///< "crossparam": copy a source mesh's triangle shapes onto a target (paper §3.2)
   Smooth,      ///< "smooth": feature-preserving smoothing, uniform weights (paper §4)
+  Track,       ///< "track": one template through frames of any connectivity (paper §3.3)
 };
 inline constexpr EnumName<JobKind> kJobKindNames[] = {{"sequence", JobKind::Sequence},
                                                       {"remesh", JobKind::Remesh},
                                                       {"crossparam", JobKind::Crossparam},
-                                                      {"smooth", JobKind::Smooth}};
+                                                      {"smooth", JobKind::Smooth},
+                                                      {"track", JobKind::Track}};
 
-/// The JSON name of a job kind ("sequence", "remesh", "crossparam", "smooth").
+/// The JSON name of a job kind ("sequence", "remesh", "crossparam", "smooth", "track").
 inline std::string job_name(JobKind job) {
   return std::string(name_of(job, kJobKindNames));
 }
