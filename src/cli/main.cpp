@@ -30,6 +30,7 @@
 #include "pipeline/report/run_text.hpp"
 #include "pipeline/sequence/sequence_job.hpp"
 #include "pipeline/cluster/shard.hpp"
+#include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/track/track_job.hpp"
 
 namespace {

@@ -12,7 +12,9 @@
 
 #include "geometry/bvh.hpp"
 #include "geometry/weights.hpp"
-#include "massage/massage.hpp"
+#include "massage/massage_options.hpp"
+#include "massage/massage_result.hpp"
+#include "massage/reference.hpp"
 #include "massage/shape_target.hpp"
 #include "massage/system.hpp"
 #include "mesh/reorder.hpp"

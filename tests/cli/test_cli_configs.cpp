@@ -41,9 +41,7 @@ TEST_CASE("every config in configs/ passes seqmassage --dry-run and writes nothi
         continue;
       }
     }
-    const fs::path out = std::holds_alternative<sm::SequenceJobOptions>(any)
-                             ? std::get<sm::SequenceJobOptions>(any).output.dir
-                             : std::get<sm::MeshJobOptions>(any).output.dir;
+    const fs::path out = std::visit([](const auto& job) { return job.output.dir; }, any);
     const bool existed = fs::exists(out);
     const sm::test::CliRun run =
         sm::test::run_cli(cwd.path(), "--dry-run " + sm::test::shell_quote(entry.path().string()));

@@ -12,11 +12,6 @@ namespace sm {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-void throw_gltf_error(const fs::path& file, const std::string& element,
-                      const std::string& problem) {
-  throw InputError("'" + file.string() + "': " + element + ": " + problem);
-}
-
 bool gltf_extension_is_kept(const std::string& name) {
   return name == "KHR_mesh_quantization" || name == "KHR_texture_transform" ||
          name == "KHR_texture_basisu" || name == "EXT_texture_webp" ||

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "io/gltf/gltf_resource.hpp"  // throw_gltf_error
+
 namespace sm {
 
 /// A loaded glTF asset. Images are not decoded: `model.images[i].image` holds the bytes of the
@@ -24,10 +26,6 @@ struct GltfFile {
 /// Deepest nesting of arrays and objects accepted in a glTF's JSON (a real asset nests about 10
 /// levels; `extras` may nest more): checked before parsing, so that no parser recurses unbounded.
 inline constexpr int kGltfMaxJsonDepth = 128;
-
-/// Throws InputError "'<file>': <element>: <problem>", e.g. element "accessors[3]".
-[[noreturn]] void throw_gltf_error(const std::filesystem::path& file, const std::string& element,
-                                   const std::string& problem);
 
 /// Loads `path` (GLB or glTF JSON, told apart by the GLB magic). Throws IoError when a file cannot
 /// be read and InputError for a truncated or malformed GLB, invalid JSON, JSON nested deeper than

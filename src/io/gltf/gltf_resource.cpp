@@ -6,12 +6,17 @@
 #include <cctype>
 #include <cstdint>
 
-#include "io/gltf/gltf_file.hpp"
 #include "io/input_file.hpp"
 #include "core/errors.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
+
+void throw_gltf_error(const fs::path& file, const std::string& element,
+                      const std::string& problem) {
+  throw InputError("'" + file.string() + "': " + element + ": " + problem);
+}
+
 
 namespace {
 

@@ -9,6 +9,11 @@
 
 namespace sm {
 
+/// Throws InputError "'<file>': <element>: <problem>", e.g. element "accessors[3]": the error of
+/// every glTF reader (here, the lowest of them).
+[[noreturn]] void throw_gltf_error(const std::filesystem::path& file, const std::string& element,
+                                   const std::string& problem);
+
 /// Decodes the percent-encoding of a URI reference (RFC 3986 §2.1: "%20" is a space, "+" stays a
 /// plus). Returns false for a '%' not followed by two hex digits.
 bool percent_decode(const std::string& uri, std::string& out);
