@@ -20,7 +20,7 @@ namespace {
 
 constexpr const char* kFrameExtensions[] = {".obj", ".ply", ".off"};
 
-std::string lower_extension(const fs::path& file) {
+std::string frame_extension_lower(const fs::path& file) {
   std::string ext = file.extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   return ext;
@@ -38,7 +38,7 @@ std::string read_bytes(const fs::path& file, const std::string& who) {
 }
 
 TriMesh parse_mesh(const std::string& bytes, const fs::path& file, const std::string& name) {
-  const std::string ext = lower_extension(file);
+  const std::string ext = frame_extension_lower(file);
   if (ext == ".obj") return parse_obj(bytes, name).mesh;
   if (ext == ".ply") return parse_ply(bytes, name);
   if (ext == ".off") return parse_off(bytes, name);
@@ -58,7 +58,7 @@ std::vector<fs::path> list_raw_frames(const fs::path& dir) {
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name.empty() || name[0] == '.') continue;
-    const std::string ext = lower_extension(it->path());
+    const std::string ext = frame_extension_lower(it->path());
     for (size_t k = 0; k < std::size(kFrameExtensions); ++k)
       present[k] = present[k] || ext == kFrameExtensions[k];
   }
@@ -90,7 +90,7 @@ TemplateLayout read_template_layout(const fs::path& file, const std::string& who
   TemplateLayout layout;
   const std::string bytes = read_bytes(file, who);
   const std::string name = who + " ('" + file.string() + "')";
-  if (lower_extension(file) == ".obj") {
+  if (frame_extension_lower(file) == ".obj") {
     layout.obj = std::make_shared<const ObjFile>(parse_obj(bytes, name));
     layout.bytes = bytes;
   } else {
