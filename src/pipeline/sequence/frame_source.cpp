@@ -7,15 +7,11 @@
 
 namespace sm {
 
-namespace {
-
 std::string short_number(double t) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", t);
   return buffer;
 }
-
-}  // namespace
 
 std::string frame_label(int i, const std::string& name, std::optional<double> time) {
   std::string text = "frame " + std::to_string(i) + " (" + name;

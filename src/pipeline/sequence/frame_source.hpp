@@ -74,6 +74,8 @@ class FrameSource {
 };
 
 /// "frame 7 (frame_0007.obj)", with ", t = 0.25 s" for a frame with a time: how messages name a
+/// A frame time as the labels and descriptions print it: "%.6g" ("0.0416667").
+std::string short_number(double t);
 /// frame (FrameSource::label).
 std::string frame_label(int i, const std::string& name, std::optional<double> time);
 

@@ -19,12 +19,6 @@ using json = nlohmann::json;
 
 namespace {
 
-std::string short_number(double t) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", t);
-  return buffer;
-}
-
 // ---------------------------------------------------------------------------------------------
 // A folder of OBJ files, one per frame, in natural order.
 
