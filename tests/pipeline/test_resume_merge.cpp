@@ -224,7 +224,7 @@ TEST_CASE("visual outputs (colored, checker, iterations.csv) resume and merge li
   const auto record = read_frame_record(dir / "out/records/frame_0005.json");
   REQUIRE(record);
   CHECK(record->outputs.size() == 2 + 4);  // frame, table, colored and checker before/after
-  CHECK_FALSE(record->iterations_csv.empty());
+  CHECK_FALSE(record->record_rows.at("iterations_csv").empty());
   fs::rename(dir / "out", dir / "single");
 
   // Interrupted after 3 frames, then resumed: the same bytes, iterations.csv included.

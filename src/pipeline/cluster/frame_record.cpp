@@ -9,6 +9,7 @@
 #include "io/csv.hpp"
 #include "io/sha256.hpp"
 #include "core/errors.hpp"
+#include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/report/report.hpp"
 #include "pipeline/report/report_json.hpp"
 
@@ -202,13 +203,17 @@ json to_json(const FrameRecord& r) {
   json outputs = json::array();
   for (const RecordedOutput& o : r.outputs)
     outputs.push_back({{"path", o.path}, {"size", o.size}, {"sha256", o.sha256}});
-  return {{"format", kFrameRecordFormat},
-          {"config_hash", r.config_hash},
-          {"template_hash", r.template_hash},
-          {"input_hash", r.input_hash},
-          {"outputs", outputs},
-          {"summary", to_json(r.summary)},
-          {"iterations_csv", r.iterations_csv}};
+  json j = {{"format", kFrameRecordFormat},
+            {"config_hash", r.config_hash},
+            {"template_hash", r.template_hash},
+            {"input_hash", r.input_hash},
+            {"outputs", outputs},
+            {"summary", to_json(r.summary)}};
+  for (const std::string& key : record_row_keys()) {  // each, empty where the output is off
+    const auto rows = r.record_rows.find(key);
+    j[key] = rows == r.record_rows.end() ? std::string() : rows->second;
+  }
+  return j;
 }
 
 FrameRecord frame_record_from_json(const json& j) {
@@ -229,7 +234,7 @@ FrameRecord frame_record_from_json(const json& j) {
     r.outputs.push_back(std::move(o));
   }
   r.summary = frame_summary_from_json(at(j, "summary", ""));
-  r.iterations_csv = get<std::string>(j, "iterations_csv", "");
+  for (const std::string& key : record_row_keys()) r.record_rows[key] = get<std::string>(j, key, "");
   return r;
 }
 

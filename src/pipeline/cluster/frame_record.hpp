@@ -15,7 +15,7 @@
 
 #include "pipeline/sequence/frame_summary.hpp"
 #include "pipeline/sequence/sequence_options.hpp"
-#include "pipeline/sequence/sequence_options.hpp"
+#include "pipeline/sequence/sequence_types.hpp"
 
 namespace sm {
 
@@ -35,7 +35,9 @@ struct FrameRecord {
   std::string input_hash;     ///< FrameSource::input_hash of the frame
   std::vector<RecordedOutput> outputs;
   FrameSummary summary;        ///< summary.csv's row and the frame's part of report.json
-  std::string iterations_csv;  ///< the frame's iterations.csv rows (output.iterations), or ""
+  /// The outputs' rows for finish(), by record key (FrameOutput::kRecordKey): the frame's
+  /// iterations.csv rows under "iterations_csv" (output.iterations).
+  RecordRows record_rows;
 };
 
 /// output_dir/records/<frame name with extension .json>.

@@ -290,7 +290,7 @@ std::string record_problem(const Shards& s, int f, const std::string& name,
 // Every selected frame's record, of this job, with its outputs: their rows into `result`, their
 // record rows into `rows`; what is wrong into `problems`.
 void verify_records(const Shards& s, const std::vector<int>& selected,
-                    MergeResult& result, std::string& rows,
+                    MergeResult& result, RecordRows& rows,
                     std::vector<std::string>& problems) {
   std::vector<int> bad_frames;
   std::string first_bad;
@@ -313,7 +313,7 @@ void verify_records(const Shards& s, const std::vector<int>& selected,
       continue;
     }
     result.frames.push_back(r->summary);
-    rows += r->iterations_csv;
+    append_record_rows(rows, r->record_rows);
   }
   if (bad_frames.empty()) return;
   const std::set<int> bad(bad_frames.begin(), bad_frames.end());
@@ -332,7 +332,7 @@ void verify_records(const Shards& s, const std::vector<int>& selected,
 
 // The whole run's outputs: every output's finish over the merged frames, summary.csv and
 // report.json.
-void assemble(const Shards& s, const std::string& rows, MergeResult& result) {
+void assemble(const Shards& s, const RecordRows& rows, MergeResult& result) {
   const SequenceJobOptions& config = s.config;
   result.warnings = s.header.warnings;
   for (const FrameSummary& f : result.frames) {
@@ -396,7 +396,7 @@ MergeResult merge_shards(const fs::path& output_dir) {
   verify_blocks(shards, selected, problems);
   MergeResult result;
   result.shards = shards.count;
-  std::string rows;  // the records' iterations.csv rows, in frame order
+  RecordRows rows;  // the records' rows (iterations.csv's), in frame order
   verify_records(shards, selected, result, rows, problems);
   if (!problems.empty()) {
     std::string text = "'" + shards.dir.string() + "': cannot merge " +

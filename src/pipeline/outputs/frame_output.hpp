@@ -58,12 +58,16 @@ struct FrameOutcome {
   const std::vector<std::optional<DistortionSummary>>* shear_per_iteration = nullptr;
 };
 
+/// Appends `more`'s rows after `rows`', key by key.
+void append_record_rows(RecordRows& rows, const RecordRows& more);
+
 /// One output's part of a frame, encoded.
 struct OutputFrame {
   /// The frame's files, relative to output.dir, with their bytes.
   std::vector<std::pair<std::filesystem::path, std::string>> files;
-  /// Text the frame's record keeps for finish() (iterations.csv rows), so that a frame kept by
-  /// --resume or merged from a shard contributes without being processed again.
+  /// Text the frame's record keeps for finish() under the output's kRecordKey (iterations.csv
+  /// rows), so that a frame kept by --resume or merged from a shard contributes without being
+  /// processed again.
   std::string record_rows;
   /// The frame's files need the output's shared_files() in place (written once per run).
   bool needs_shared = false;
@@ -74,7 +78,7 @@ struct FinishedFrames {
   std::vector<int> frames;         ///< the frames whose files are in place, in order
   std::vector<std::string> names;  ///< their names (FrameSource::name), in the same order
   /// Every frame's OutputFrame::record_rows (with files in place or not), in frame order.
-  std::string record_rows;
+  RecordRows record_rows;
   /// Every frame of the run (or of every shard), in order: summary.csv's rows (report.html).
   const std::vector<FrameSummary>* summaries = nullptr;
   /// The run's warnings so far (the plan's, the frames', the outputs' finished before).
@@ -108,6 +112,14 @@ class FrameOutput {
  public:
   virtual ~FrameOutput() = default;
 
+  /// The key under which a frame's record keeps the output's OutputFrame::record_rows; null for
+  /// an output that keeps none. A derived output with rows declares its own.
+  static constexpr const char* kRecordKey = nullptr;
+  /// This output's kRecordKey (set by make_frame_outputs).
+  const char* record_key() const { return record_key_; }
+  /// Adds `part`'s rows to `rows` under this output's key.
+  void add_record_rows(RecordRows& rows, const OutputFrame& part) const;
+
   // --- The plan (const, no file is touched).
   /// The files a run of `frames` writes, under output.dir (for the overwrite check).
   virtual std::vector<std::filesystem::path> files(const std::vector<int>& frames) const = 0;
@@ -140,6 +152,10 @@ class FrameOutput {
   /// Completes the whole-run files from `done` (nothing for an output of per-frame files only).
   /// Throws IoError when a file cannot be read or written.
   virtual OutputFinish finish(const FinishedFrames& /*done*/) const { return {}; }
+
+ private:
+  friend std::vector<std::shared_ptr<FrameOutput>> make_frame_outputs(const OutputContext&);
+  const char* record_key_ = nullptr;
 };
 
 // --- Helpers for the outputs' plan text.
@@ -158,6 +174,7 @@ struct OutputEntry {
   bool (*enabled)(const SequenceJobOptions& config);
   std::shared_ptr<FrameOutput> (*make)(const OutputContext& context);
   const char* (*help)();
+  const char* record_key;  ///< FrameOutput::kRecordKey of the output, or null
 };
 
 /// The registry line of output class T (see the header's doc).
@@ -166,7 +183,7 @@ OutputEntry output() {
   return {&T::enabled, [](const OutputContext& c) -> std::shared_ptr<FrameOutput> {
             return std::make_shared<T>(c);
           },
-          &T::help};
+          &T::help, T::kRecordKey};
 }
 
 /// Every output, in the order of the dry run, the records, --help and the results line.
@@ -175,6 +192,10 @@ const std::vector<OutputEntry>& output_registry();
 /// The outputs `context.config` enables, in registry order. Throws ConfigError for an output
 /// the input cannot feed (e.g. "format": "gltf" without a glTF input).
 std::vector<std::shared_ptr<FrameOutput>> make_frame_outputs(const OutputContext& context);
+
+/// The record keys of every registered output that keeps rows, in registry order: a frame
+/// record holds each (empty where the output is off), so that records compare across configs.
+std::vector<std::string> record_row_keys();
 
 /// The outputs part of `seqmassage --help`: every registered output's lines, in order.
 std::string outputs_help();

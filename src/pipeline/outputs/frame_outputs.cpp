@@ -32,8 +32,26 @@ const std::vector<OutputEntry>& output_registry() {
 std::vector<std::shared_ptr<FrameOutput>> make_frame_outputs(const OutputContext& context) {
   std::vector<std::shared_ptr<FrameOutput>> outputs;
   for (const OutputEntry& entry : output_registry())
-    if (entry.enabled(context.config)) outputs.push_back(entry.make(context));
+    if (entry.enabled(context.config)) {
+      outputs.push_back(entry.make(context));
+      outputs.back()->record_key_ = entry.record_key;
+    }
   return outputs;
+}
+
+std::vector<std::string> record_row_keys() {
+  std::vector<std::string> keys;
+  for (const OutputEntry& entry : output_registry())
+    if (entry.record_key) keys.push_back(entry.record_key);
+  return keys;
+}
+
+void append_record_rows(RecordRows& rows, const RecordRows& more) {
+  for (const auto& [key, text] : more) rows[key] += text;
+}
+
+void FrameOutput::add_record_rows(RecordRows& rows, const OutputFrame& part) const {
+  if (record_key_) rows[record_key_] += part.record_rows;
 }
 
 std::string outputs_help() {

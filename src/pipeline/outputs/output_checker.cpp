@@ -15,17 +15,12 @@ constexpr const char* kMaterial = "checker";
 constexpr const char* kMtl = "checker.mtl";
 constexpr const char* kPng = "checker.png";
 
-fs::path obj_name(const std::string& frame_name) {
-  return fs::path(frame_name).replace_extension(".obj");
-}
-
 }  // namespace
 
 CheckerObjOutput::CheckerObjOutput(const OutputContext& context)
-    : dir_(context.config.output.dir),
+    : BeforeAfterOutput(context, "checker", ".obj", context.config.output.checker.frames),
       options_(context.config.output.checker),
-      template_mesh_(context.config.templ.mesh),
-      source_(context.source) {}
+      template_mesh_(context.config.templ.mesh) {}
 
 bool CheckerObjOutput::enabled(const SequenceJobOptions& config) {
   return config.output.checker.enabled;
@@ -37,19 +32,8 @@ const char* CheckerObjOutput::help() {
          "(\"checker\")\n";
 }
 
-std::vector<fs::path> CheckerObjOutput::files(const std::vector<int>& frames) const {
-  std::vector<fs::path> out;
-  for (const char* side : {"before", "after"}) {
-    for (int i : frames)
-      if (options_.frames.contains(i)) out.push_back(dir_ / "checker" / side / obj_name(source_->name(i)));
-    out.push_back(dir_ / "checker" / side / kMtl);
-    out.push_back(dir_ / "checker" / side / kPng);
-  }
-  return out;
-}
-
-std::vector<fs::path> CheckerObjOutput::folders() const {
-  return {dir_ / "checker" / "before", dir_ / "checker" / "after"};
+std::vector<std::string> CheckerObjOutput::side_files() const {
+  return {kMtl, kPng};
 }
 
 std::string CheckerObjOutput::describe(const std::vector<int>& frames) const {
@@ -61,17 +45,12 @@ std::string CheckerObjOutput::describe(const std::vector<int>& frames) const {
          ")\n";
 }
 
-std::vector<std::string> CheckerObjOutput::check(const std::vector<int>& selected) const {
-  return unlisted_frames(options_.frames, selected, "output.checker.frames");
-}
-
 json CheckerObjOutput::report() const {
   if (!uv_) return json::object();  // not started
-  return {{"checker",
-           {{"before", "checker/before/"},
-            {"after", "checker/after/"},
-            {"uv", uv_->source},
-            {"uv_template", template_source_}}}};
+  json checker = folders_report();
+  checker["uv"] = uv_->source;
+  checker["uv_template"] = template_source_;
+  return {{"checker", checker}};
 }
 
 ResultNames CheckerObjOutput::results() const {
@@ -93,24 +72,18 @@ void CheckerObjOutput::start(const SequencePlan& plan) {
   template_source_ = plan.template_source;
 }
 
-OutputFrame CheckerObjOutput::encode(const FrameOutcome& f) const {
-  OutputFrame out;
-  if (!uv_ || !options_.frames.contains(f.index)) return out;
-  const fs::path obj = obj_name(source_->name(f.index));
+std::optional<std::pair<std::string, std::string>> CheckerObjOutput::encode_sides(
+    const FrameOutcome& f) const {
+  if (!uv_) return std::nullopt;  // not started
   const std::string label = source_->label(f.index);
   const Triangles& F = f.input->mesh.F;  // the template's (checked when the frame was read)
   const std::string uv_text = "texture coordinates of the template, " + template_source_ +
                               (uv_->source == "input" ? " (its own)" : " (charts)");
-  out.files.emplace_back(fs::path("checker") / "before" / obj,
-                         format_textured_obj(f.input->mesh.V, F, uv_->uv, uv_->faces, kMtl,
-                                             kMaterial,
-                                             "seqmassage checker: " + label + ", input\n" + uv_text));
-  out.files.emplace_back(fs::path("checker") / "after" / obj,
-                         format_textured_obj(*f.output, F, uv_->uv, uv_->faces, kMtl, kMaterial,
-                                             "seqmassage checker: " + label + ", corrected\n" +
-                                                 uv_text));
-  out.needs_shared = true;
-  return out;
+  return std::make_pair(
+      format_textured_obj(f.input->mesh.V, F, uv_->uv, uv_->faces, kMtl, kMaterial,
+                          "seqmassage checker: " + label + ", input\n" + uv_text),
+      format_textured_obj(*f.output, F, uv_->uv, uv_->faces, kMtl, kMaterial,
+                          "seqmassage checker: " + label + ", corrected\n" + uv_text));
 }
 
 std::vector<std::pair<fs::path, std::string>> CheckerObjOutput::shared_files() const {

@@ -5,34 +5,32 @@
 #include <optional>
 
 #include "pipeline/outputs/checker.hpp"
-#include "pipeline/outputs/frame_output.hpp"
+#include "pipeline/outputs/output_before_after.hpp"
 
 namespace sm {
 
-class CheckerObjOutput : public FrameOutput {
+class CheckerObjOutput : public BeforeAfterOutput {
  public:
   explicit CheckerObjOutput(const OutputContext& context);
   static bool enabled(const SequenceJobOptions& config);
   static const char* help();
 
-  std::vector<std::filesystem::path> files(const std::vector<int>& frames) const override;
-  std::vector<std::filesystem::path> folders() const override;
   std::string describe(const std::vector<int>& frames) const override;
-  std::vector<std::string> check(const std::vector<int>& selected) const override;
   /// With the texture coordinates' source, known once the run has started.
   nlohmann::json report() const override;
   ResultNames results() const override;
   /// Reads the template's texture coordinates: the template frame as read (after the source is
   /// prepared), or the template mesh's file for an OBJ template.
   void start(const SequencePlan& plan) override;
-  OutputFrame encode(const FrameOutcome& frame) const override;
   std::vector<std::pair<std::filesystem::path, std::string>> shared_files() const override;
 
  private:
-  std::filesystem::path dir_;
+  std::optional<std::pair<std::string, std::string>> encode_sides(
+      const FrameOutcome& frame) const override;
+  std::vector<std::string> side_files() const override;
+
   CheckerOutputOptions options_;
   std::filesystem::path template_mesh_;  // template.mesh, if any
-  std::shared_ptr<const FrameSource> source_;
   std::string template_source_;
   std::optional<CornerUv> uv_;  // from start()
 };

@@ -16,16 +16,11 @@ std::string stream_number(double x) {
   return s.str();
 }
 
-fs::path ply_name(const std::string& frame_name) {
-  return fs::path(frame_name).replace_extension(".ply");
-}
-
 }  // namespace
 
 ColoredPlyOutput::ColoredPlyOutput(const OutputContext& context)
-    : dir_(context.config.output.dir),
-      options_(context.config.output.colored),
-      source_(context.source) {}
+    : BeforeAfterOutput(context, "colored", ".ply", context.config.output.colored.frames),
+      options_(context.config.output.colored) {}
 
 bool ColoredPlyOutput::enabled(const SequenceJobOptions& config) {
   return config.output.colored.enabled;
@@ -37,52 +32,29 @@ const char* ColoredPlyOutput::help() {
          "(\"colored\")\n";
 }
 
-std::vector<fs::path> ColoredPlyOutput::files(const std::vector<int>& frames) const {
-  std::vector<fs::path> out;
-  for (const char* side : {"before", "after"})
-    for (int i : frames)
-      if (options_.frames.contains(i)) out.push_back(dir_ / "colored" / side / ply_name(source_->name(i)));
-  return out;
-}
-
-std::vector<fs::path> ColoredPlyOutput::folders() const {
-  return {dir_ / "colored" / "before", dir_ / "colored" / "after"};
-}
-
 std::string ColoredPlyOutput::describe(const std::vector<int>& frames) const {
   return "  colored/{before,after}/<name>.ply (" + frames_text(count_in(options_.frames, frames)) +
          ": shear 0 blue to " + stream_number(options_.max) + " and above red, " +
          (options_.colors == ShearColorMode::Faces ? "per face" : "per vertex") + ")\n";
 }
 
-std::vector<std::string> ColoredPlyOutput::check(const std::vector<int>& selected) const {
-  return unlisted_frames(options_.frames, selected, "output.colored.frames");
-}
-
 json ColoredPlyOutput::report() const {
-  return {{"colored",
-           {{"before", "colored/before/"},
-            {"after", "colored/after/"},
-            {"shear_red", options_.max},
-            {"colors", options_.colors == ShearColorMode::Faces ? "faces" : "vertices"}}}};
+  json colored = folders_report();
+  colored["shear_red"] = options_.max;
+  colored["colors"] = options_.colors == ShearColorMode::Faces ? "faces" : "vertices";
+  return {{"colored", colored}};
 }
 
 ResultNames ColoredPlyOutput::results() const {
   return {{"colored/ (PLY)"}, {}};
 }
 
-OutputFrame ColoredPlyOutput::encode(const FrameOutcome& f) const {
-  OutputFrame out;
-  if (!options_.frames.contains(f.index)) return out;
-  const fs::path ply = ply_name(source_->name(f.index));
+std::optional<std::pair<std::string, std::string>> ColoredPlyOutput::encode_sides(
+    const FrameOutcome& f) const {
   const Triangles& F = f.input->mesh.F;  // the template's (checked when the frame was read)
-  out.files.emplace_back(fs::path("colored") / "before" / ply,
-                         format_shear_ply(f.input->mesh.V, F, *f.shear_before, options_.max,
-                                          options_.colors));
-  out.files.emplace_back(
-      fs::path("colored") / "after" / ply,
+  return std::make_pair(
+      format_shear_ply(f.input->mesh.V, F, *f.shear_before, options_.max, options_.colors),
       format_shear_ply(*f.output, F, *f.shear_after, options_.max, options_.colors));
-  return out;
 }
 
 }  // namespace sm

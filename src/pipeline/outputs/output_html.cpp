@@ -45,9 +45,9 @@ HtmlReportOutput::HtmlReportOutput(const OutputContext& context)
 bool HtmlReportOutput::enabled(const SequenceJobOptions& config) { return config.output.html; }
 
 const char* HtmlReportOutput::help() {
-  return "  report.html, report_data/     a self-contained page of the run: plots, tables and a "
-         "3D player of\n"
-         "                              the frames before and after (\"html\")\n";
+  return "  report.html, report_data/   a self-contained page of the run: plots, tables and a "
+         "3D player\n"
+         "                              of the frames before and after (\"html\")\n";
 }
 
 std::vector<fs::path> HtmlReportOutput::files(const std::vector<int>& frames) const {

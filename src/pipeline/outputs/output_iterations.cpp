@@ -76,7 +76,8 @@ OutputFrame IterationsCsvOutput::encode(const FrameOutcome& f) const {
 
 OutputFinish IterationsCsvOutput::finish(const FinishedFrames& done) const {
   const std::string name = iterations_file_name(shard_);
-  write_file_atomic(dir_ / name, header_ + done.record_rows);
+  const auto rows = done.record_rows.find(kRecordKey);
+  write_file_atomic(dir_ / name, header_ + (rows == done.record_rows.end() ? "" : rows->second));
   return {{}, {name}};
 }
 

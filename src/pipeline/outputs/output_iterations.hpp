@@ -8,6 +8,9 @@ namespace sm {
 
 class IterationsCsvOutput : public FrameOutput {
  public:
+  /// A frame record's iterations.csv rows (the record's field of that name).
+  static constexpr const char* kRecordKey = "iterations_csv";
+
   explicit IterationsCsvOutput(const OutputContext& context);
   static bool enabled(const SequenceJobOptions& config);
   static const char* help();

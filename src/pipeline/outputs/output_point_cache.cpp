@@ -10,7 +10,7 @@
 #include "io/obj.hpp"
 #include "io/point_cache.hpp"
 #include "core/errors.hpp"
-#include "pipeline/outputs/output_frames.hpp"
+#include "pipeline/outputs/output_staged.hpp"
 #include "pipeline/cluster/shard.hpp"
 #include "pipeline/sequence/frame_sources.hpp"
 
@@ -84,9 +84,7 @@ std::string format_rest_obj(const SequenceJobOptions& config, const FrameSource&
 }
 
 PointCacheOutput::PointCacheOutput(const OutputContext& context)
-    : config_(context.config),
-      format_(*point_cache_format(context.config.output.format)),
-      source_(context.source) {}
+    : StagedPositionsOutput(context), format_(*point_cache_format(context.config.output.format)) {}
 
 bool PointCacheOutput::enabled(const SequenceJobOptions& config) {
   return point_cache_format(config.output.format).has_value();
@@ -101,74 +99,30 @@ const char* PointCacheOutput::help() {
          "only)\n";
 }
 
-const FrameSource& PointCacheOutput::source() const {
-  std::call_once(source_once_, [&] {
-    if (!source_) source_ = make_frame_source(config_);  // merge: the input, read again
-  });
-  return *source_;
-}
-
-std::vector<fs::path> PointCacheOutput::files(const std::vector<int>& frames) const {
-  std::vector<fs::path> out;
-  for (int i : frames) out.push_back(config_.output.dir / positions_file(source().name(i)));
-  out.push_back(config_.output.dir / point_cache_file_name(format_));
-  out.push_back(config_.output.dir / "rest.obj");
-  return out;
-}
-
-std::vector<fs::path> PointCacheOutput::folders() const {
-  return {config_.output.dir / "positions"};
-}
-
-std::string PointCacheOutput::describe(const std::vector<int>& frames) const {
-  const std::string cache = point_cache_file_name(format_).string();
-  std::string text = "  positions/<name>.bin (" + std::to_string(frames.size()) +
-                     " files: the corrected positions of each frame)\n";
-  if (config_.shard.sharded())
-    return text + "  " + cache + ", rest.obj: assembled from every shard's positions by " +
-           "seqmassage merge\n";
-  return text + "  " + cache + " (" + frames_text(int(frames.size())) + " of " +
-         point_cache_format_label(format_) +
-         " float32 positions), rest.obj (the template mesh the cache applies to)\n";
-}
-
 json PointCacheOutput::report() const {
   return {{format_ == PointCacheFormat::Pc2 ? "pc2" : "mdd", point_cache_file_name(format_)},
           {"rest_mesh", "rest.obj"},
           {"positions", "positions/"}};
 }
 
-ResultNames PointCacheOutput::results() const {
-  if (config_.shard.sharded()) return {{"positions/"}, {}};  // `seqmassage merge` assembles it
-  return {{"positions/", point_cache_file_name(format_).string(), "rest.obj"}, {}};
+std::vector<std::string> PointCacheOutput::assembled_files() const {
+  return {point_cache_file_name(format_).string(), "rest.obj"};
 }
 
-OutputFrame PointCacheOutput::encode(const FrameOutcome& f) const {
-  const Positions& V = *f.output;
-  OutputFrame out;
-  out.files.emplace_back(
-      positions_file(source().name(f.index)),
-      std::string(reinterpret_cast<const char*>(V.data()), size_t(V.size()) * sizeof(double)));
-  return out;
+std::string PointCacheOutput::describe_assembled(const std::vector<int>& frames) const {
+  return "  " + point_cache_file_name(format_).string() + " (" + frames_text(int(frames.size())) +
+         " of " + point_cache_format_label(format_) +
+         " float32 positions), rest.obj (the template mesh the cache applies to)\n";
 }
 
-OutputFinish PointCacheOutput::finish(const FinishedFrames& done) const {
-  if (config_.shard.sharded()) return {};  // `seqmassage merge` assembles it
-  const std::string cache = point_cache_file_name(format_).string();
-  if (done.frames.empty())
-    return {{"no frame was processed, so " + cache + " and rest.obj were not written"}, {}};
+void PointCacheOutput::assemble(const FinishedFrames& done, const PositionsReader& read) const {
   const std::string rest = format_rest_obj(config_, source());
   const int n = parse_obj(rest, "rest.obj").mesh.num_vertices();
-  int next = 0;
-  write_point_cache(config_.output.dir / cache, format_, n, int(done.frames.size()),
+  write_point_cache(config_.output.dir / point_cache_file_name(format_), format_, n,
+                    int(done.frames.size()),
                     point_cache_timing(format_, source(), done.frames, config_.output.point_cache),
-                    [&](int k) {
-                      if (k != next++)
-                        throw std::logic_error("PointCacheOutput: frames read out of order");
-                      return read_positions_file(config_.output.dir, done.names[size_t(k)], n);
-                    });
+                    [&](int k) { return read(k, n); });
   write_file_atomic(config_.output.dir / "rest.obj", rest);
-  return {{}, {cache, "rest.obj"}};
 }
 
 }  // namespace sm

@@ -6,7 +6,7 @@
 #include <memory>
 #include <mutex>
 
-#include "pipeline/outputs/frame_output.hpp"
+#include "pipeline/outputs/output_staged.hpp"
 
 namespace sm {
 
@@ -28,33 +28,23 @@ PointCacheTiming point_cache_timing(PointCacheFormat format, const FrameSource& 
 /// of the first selected frame. Reads what it needs from the input, so merge gives the same bytes.
 std::string format_rest_obj(const SequenceJobOptions& config, const FrameSource& source);
 
-/// Each frame's corrected positions go to positions/<frame>.bin (as for the GLB); finish()
-/// writes output.dir/sequence.pc2 (or .mdd) of the done frames, in order, one frame in memory at
-/// a time, then rest.obj, each atomically. A shard writes the positions only. Built without a
-/// source (merge), it makes one from the config when finish() needs it.
-class PointCacheOutput : public FrameOutput {
+/// The frames' positions staged (StagedPositionsOutput); finish() writes output.dir/sequence.pc2
+/// (or .mdd) of the done frames, in order, one frame in memory at a time, then rest.obj, each
+/// atomically. Throws InputError from finish() for a position beyond float32's range.
+class PointCacheOutput : public StagedPositionsOutput {
  public:
   explicit PointCacheOutput(const OutputContext& context);
   static bool enabled(const SequenceJobOptions& config);
   static const char* help();
 
-  std::vector<std::filesystem::path> files(const std::vector<int>& frames) const override;
-  std::vector<std::filesystem::path> folders() const override;
-  std::string describe(const std::vector<int>& frames) const override;
   nlohmann::json report() const override;
-  ResultNames results() const override;
-  OutputFrame encode(const FrameOutcome& frame) const override;
-  /// Throws IoError when a positions file is missing or has the wrong size or a file cannot be
-  /// written, InputError for a position beyond float32's range.
-  OutputFinish finish(const FinishedFrames& done) const override;
 
  private:
-  const FrameSource& source() const;
+  std::vector<std::string> assembled_files() const override;
+  std::string describe_assembled(const std::vector<int>& frames) const override;
+  void assemble(const FinishedFrames& done, const PositionsReader& read) const override;
 
-  SequenceJobOptions config_;
   PointCacheFormat format_;
-  mutable std::shared_ptr<const FrameSource> source_;
-  mutable std::once_flag source_once_;
 };
 
 }  // namespace sm

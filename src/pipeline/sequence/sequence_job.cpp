@@ -70,13 +70,14 @@ void fill_record(const SequencePlan& plan, Work& w) {
   r.config_hash = plan.config_hash;
   r.template_hash = plan.template_hash;
   r.outputs.clear();
-  r.iterations_csv.clear();
-  for (const OutputFrame& part : w.outputs) {
+  r.record_rows.clear();
+  for (size_t o = 0; o < w.outputs.size(); ++o) {
+    const OutputFrame& part = w.outputs[o];
     if (w.has_output)
       for (const auto& [path, bytes] : part.files)
         r.outputs.push_back({path.generic_string(), bytes.size(), sha256_hex(bytes)});
     w.needs_shared = w.needs_shared || (w.has_output && part.needs_shared);
-    r.iterations_csv += part.record_rows;
+    plan.outputs[o]->add_record_rows(r.record_rows, part);
   }
   r.summary = w.summary;
 }
@@ -229,7 +230,7 @@ class SequenceRun {
       done_.frames.push_back(w->index);
       done_.names.push_back(w->summary.file);
     }
-    done_.record_rows += w->record.iterations_csv;
+    append_record_rows(done_.record_rows, w->record.record_rows);
     const FrameSummary& s = w->summary;
     append_frame_warnings(s, plan_.config.output.on_failure, result_.warnings);
     if (s.status == FrameStatus::Failed) ++result_.failed;

@@ -17,6 +17,9 @@
 
 namespace sm {
 
+/// The text the frames' records keep for the outputs' finish(), per output: its record key
+/// (FrameOutput::kRecordKey) → the rows, in frame order.
+using RecordRows = std::map<std::string, std::string>;
 
 class FrameOutput;
 class FrameProcessor;

@@ -294,7 +294,7 @@ class TrackRun {
         shared_written_[o] = true;
       }
       for (const auto& [file, bytes] : part.files) write_file_atomic(c.output.dir / file, bytes);
-      record_rows_[index] += part.record_rows;
+      outputs[o]->add_record_rows(record_rows_[index], part);
     }
   }
 
@@ -306,7 +306,7 @@ class TrackRun {
       result_.frames.push_back(row);
       done.frames.push_back(index);
       done.names.push_back(plan_.outputs.source->name(index));
-      done.record_rows += record_rows_[index];
+      append_record_rows(done.record_rows, record_rows_[index]);
       summaries.push_back(summaries_.at(index));
       if (row.status == TrackStatus::Lost) {
         ++result_.lost;
@@ -332,7 +332,7 @@ class TrackRun {
   TrackResult result_;
   std::map<int, TrackRow> rows_;
   std::map<int, FrameSummary> summaries_;
-  std::map<int, std::string> record_rows_;
+  std::map<int, RecordRows> record_rows_;
   std::vector<bool> shared_written_;
 };
 
