@@ -1,6 +1,7 @@
 #include "cli/help.hpp"
 
 #include "pipeline/outputs/frame_output.hpp"
+#include "pipeline/sequence/input_kinds.hpp"
 
 namespace sm::cli {
 
@@ -28,14 +29,11 @@ by its "job" key:
   smooth      evens out the triangles while keeping the surface and its sharp features (section 4)
 )";
 
-// The footer's outputs of a sequence come from the output registry (sm::outputs_help), between
-// these two parts (run_help_footer).
-const char* const kHelpInputs = R"(Inputs of a sequence ("input"): a folder of OBJ frames ("frames"), a glTF 2.0 animation ("gltf",
-with "mesh", "animation" and "fps"), a PC2 or MDD point cache on a mesh ("pc2" or "mdd", with
-"mesh": its OBJ, PLY or OFF), or a generated sequence ("synthetic").
-
-Outputs of a sequence, under "output.dir":
-)";
+// The footer's inputs and outputs of a sequence come from the table of input kinds
+// (sm::inputs_help) and the output registry (sm::outputs_help), between these parts
+// (run_help_footer).
+const char* const kHelpInputs = "Inputs of a sequence, one of these keys in \"input\":\n";
+const char* const kHelpOutputs = "\nOutputs of a sequence, under \"output.dir\":\n";
 
 const char* const kHelpFooter = R"(  records/<frame>.json        what made each frame, its summary row, its outputs' SHA-256
   summary.csv, report.json    one row per frame; config, totals, warnings, failures
@@ -110,7 +108,7 @@ connectivity), 4 I/O error.
 )";
 
 std::string run_help_footer() {
-  return kHelpInputs + outputs_help() + kHelpFooter;
+  return kHelpInputs + inputs_help() + kHelpOutputs + outputs_help() + kHelpFooter;
 }
 
 }  // namespace sm::cli

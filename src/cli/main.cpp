@@ -22,6 +22,7 @@
 #include "config/complete.hpp"
 #include "config/reference.hpp"
 #include "core/errors.hpp"
+#include "core/options_table.hpp"
 #include "pipeline/mesh_jobs/measure_files.hpp"
 #include "pipeline/cluster/merge.hpp"
 #include "pipeline/mesh_jobs/mesh_job.hpp"
@@ -48,11 +49,11 @@ enum ExitCode : int {
 
 using sm::cli::UsageError;
 
-// --threads N of every command: an integer in [0, 4096], 0 = one per core.
+// --threads N of every command: an integer in [0, sm::kMaxThreads], 0 = one per core.
 CLI::Option* add_threads(CLI::App& app, int& threads, const std::string& description) {
   return app.add_option("--threads", threads, description)
       ->type_name("N")
-      ->transform(sm::cli::integer_in(0, 4096));
+      ->transform(sm::cli::integer_in(0, sm::kMaxThreads));
 }
 
 // "seqmassage 0.1.0 (Eigen 3.4.0, oneTBB 2021.8, nlohmann-json 3.11.2, gcc 12.2.0)"

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "io/atomic_file.hpp"
+#include "pipeline/sequence/input_kinds.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
@@ -46,15 +47,16 @@ void validate_input(const json& input, const InputOptions& in) {
             "input." + key,
             "only applies to a glTF input (\"gltf\": a .gltf or .glb animation file)" +
                 std::string(key == "mesh" ? "; or the mesh of a \"pc2\" or \"mdd\" cache" : ""));
-  const int given = int(has(input, "frames")) + int(has(input, "synthetic")) +
-                    int(has(input, "gltf")) + int(has(input, "pc2")) + int(has(input, "mdd"));
-  if (given == 0)
-    fail_at("input",
-            "missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated sequence), "
-            "\"gltf\" (a glTF animation), or \"pc2\" or \"mdd\" (a point cache, with its "
-            "\"mesh\")");
-  if (given > 1)
-    fail_at("input", "give only one of \"frames\", \"synthetic\", \"gltf\", \"pc2\" and \"mdd\"");
+  int given = 0;
+  std::string keys;  // "frames", "synthetic", ... and "mdd"
+  const std::vector<InputKind>& kinds = input_kinds();
+  for (size_t k = 0; k < kinds.size(); ++k) {
+    given += int(has(input, kinds[k].key));
+    keys += std::string(k == 0 ? "" : k + 1 == kinds.size() ? " and " : ", ") + "\"" +
+            kinds[k].key + "\"";
+  }
+  if (given == 0) fail_at("input", "missing (" + input_kinds_text() + ")");
+  if (given > 1) fail_at("input", "give only one of " + keys);
   if (cache && cache->mesh.empty())
     fail_at("input.mesh",
             std::string("missing (the mesh the ") + (in.pc2 ? "\"pc2\"" : "\"mdd\"") +

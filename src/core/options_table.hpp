@@ -80,6 +80,13 @@ inline ValueSpec left_open(double lo, double hi) {
 inline ValueSpec right_open(double lo, double hi) {
   return interval(lo, false, hi, true);
 }
+
+/// The most worker threads a job or `--threads` accepts; 0 asks for one per core.
+inline constexpr int kMaxThreads = 4096;
+/// The range of every "threads" key and of `--threads`: [0, kMaxThreads].
+inline ValueSpec threads_range() {
+  return closed(0, kMaxThreads);
+}
 /// An integer >= the sibling `key` (a range's stop and start).
 inline ValueSpec at_least_key(std::string_view key) {
   ValueSpec s;

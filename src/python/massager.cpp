@@ -7,6 +7,7 @@
 #include <thread>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <oneapi/tbb/parallel_for.h>
@@ -14,6 +15,7 @@
 
 #include "io/options_json.hpp"
 #include "io/vertex_weights.hpp"
+#include "massage/iteration_fields.hpp"
 #include "massage/massage.hpp"
 #include "massage/massage_keys.hpp"
 #include "core/errors.hpp"
@@ -27,21 +29,21 @@ namespace fs = std::filesystem;
 
 py::dict iteration_dict(const IterationStats& it) {
   py::dict d;
-  d["iteration"] = it.iteration;
-  d["mu"] = it.mu;
-  d["energy"] = it.energy;
-  d["max_dist_m_to_n"] = it.max_dist_m_to_n;
-  d["rms_dist_m_to_n"] = it.rms_dist_m_to_n;
-  d["max_dist_n_to_m"] = it.max_dist_n_to_m;
-  d["rms_dist_n_to_m"] = it.rms_dist_n_to_m;
-  d["max_move"] = it.max_move;
-  d["solver_iterations"] = it.solver_iterations;
-  d["solver_residual"] = it.solver_residual;
-  d["exact_queries"] = it.exact_queries;
-  d["seconds_closest"] = it.seconds_closest;
-  d["seconds_assemble"] = it.seconds_assemble;
-  d["seconds_solve"] = it.seconds_solve;
+  for (const IterationField& field : iteration_fields())
+    if (field.writers & kPythonDict)
+      std::visit([&](auto member) { d[field.name] = it.*member; }, field.member);
   return d;
+}
+
+// Result.iterations' docstring: the dict's keys.
+const char* iterations_doc() {
+  static const std::string doc = [] {
+    std::string text = "one dict per outer iteration: ";
+    const std::vector<const char*> names = iteration_field_names(kPythonDict);
+    for (size_t k = 0; k < names.size(); ++k) text += (k ? ", " : "") + std::string(names[k]);
+    return text;
+  }();
+  return doc.c_str();
 }
 
 // The result's positions as a numpy array that owns them (no copy).
@@ -280,10 +282,7 @@ void bind_massager(py::module_& m) {
       .def_readonly("ok", &Result::ok, "False: numerical failure, see failure")
       .def_readonly("failure", &Result::failure, "why the run failed, or None")
       .def_readonly("iterations", &Result::iterations,
-                    "one dict per outer iteration: iteration, mu, energy, max_dist_m_to_n, "
-                    "rms_dist_m_to_n, max_dist_n_to_m, rms_dist_n_to_m, max_move, "
-                    "solver_iterations, solver_residual, exact_queries, seconds_closest, "
-                    "seconds_assemble, seconds_solve")
+                    iterations_doc())
       .def_readonly("stopped_early", &Result::stopped_early,
                     "the movement tolerance was met before the last iteration")
       .def_readonly("folded_triangles", &Result::folded_triangles,

@@ -230,14 +230,15 @@ TEST_CASE("missing and conflicting keys") {
   CHECK(config_error(R"({"input": {"frames": "f"}, "output": {"dir": "o"}})") ==
         "job: missing (the kind of job: \"sequence\")");
   CHECK(config_error(R"({"job": "sequence", "output": {"dir": "o"}})") ==
-        "input: missing (\"frames\": a folder of OBJ frames, \"synthetic\" or \"gltf\": a glTF "
-        "animation)");
+        "input: missing (one of \"frames\" (a folder of OBJ frames), \"synthetic\" (a "
+        "generated sequence), \"gltf\" (a glTF animation), \"pc2\" (a PC2 point cache, with its "
+        "\"mesh\") or \"mdd\" (an MDD point cache, with its \"mesh\"))");
   CHECK(config_error(R"({"job": "sequence", "input": {"frames": "f"}, "output": {}})") ==
         "output.dir: missing (the folder the results are written to)");
   CHECK(config_error(with("input", R"({})")) ==
-        "input: missing \"frames\" (a folder of OBJ frames), \"synthetic\" (a generated "
-        "sequence), \"gltf\" (a glTF animation), or \"pc2\" or \"mdd\" (a point cache, with "
-        "its \"mesh\")");
+        "input: missing (one of \"frames\" (a folder of OBJ frames), \"synthetic\" (a "
+        "generated sequence), \"gltf\" (a glTF animation), \"pc2\" (a PC2 point cache, with its "
+        "\"mesh\") or \"mdd\" (an MDD point cache, with its \"mesh\"))");
   CHECK(config_error(with("input", R"({"frames": "f", "synthetic": {}})")) ==
         "input: give only one of \"frames\", \"synthetic\", \"gltf\", \"pc2\" and \"mdd\"");
   CHECK(config_error(with("input", R"({"frames": "f", "gltf": "take.glb"})")) ==

@@ -133,7 +133,7 @@ inline const Fields<MeshJobOptions>& fields_of<MeshJobOptions>() {
           .required("an object with \"dir\", the output folder"),
       field<&O::massage>("massage", any_value(), "the optimizer, the same for every job"),
       field<&O::measures>("measures", any_value(), "how the report measures the meshes"),
-      field<&O::threads>("threads", closed(0, 4096),
+      field<&O::threads>("threads", threads_range(),
                          "worker threads; 0 = one per core. `--threads` overrides"),
   };
   return fields;

@@ -3,8 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 #include "io/csv.hpp"
+#include "massage/iteration_fields.hpp"
 #include "pipeline/report/report.hpp"
 #include "pipeline/report/report_json.hpp"
 
@@ -321,16 +324,17 @@ json make_mesh_report(const MeshJobPlan& plan, const MeshJobResult& result) {
   const MassageResult& m = result.massage;
   json iterations = json::array();
   for (const IterationStats& it : m.iterations) {
-    json row = {{"iteration", it.iteration},
-                {"mu", json_number(it.mu)},
-                {"energy", json_number(it.energy)},
-                {"max_dist_m_to_n", json_number(it.max_dist_m_to_n)},
-                {"rms_dist_m_to_n", json_number(it.rms_dist_m_to_n)},
-                {"max_dist_n_to_m", json_number(it.max_dist_n_to_m)},
-                {"rms_dist_n_to_m", json_number(it.rms_dist_n_to_m)},
-                {"max_move", json_number(it.max_move)},
-                {"solver_iterations", it.solver_iterations},
-                {"exact_queries", it.exact_queries}};
+    json row = json::object();
+    for (const IterationField& field : iteration_fields())
+      if (field.writers & kReportJson)
+        std::visit(
+            [&](auto member) {
+              if constexpr (std::is_same_v<decltype(member), int IterationStats::*>)
+                row[field.name] = it.*member;
+              else
+                row[field.name] = json_number(it.*member);
+            },
+            field.member);
     if (c.output.timings)
       row["seconds"] = json_number(it.seconds_closest + it.seconds_assemble + it.seconds_solve);
     iterations.push_back(row);

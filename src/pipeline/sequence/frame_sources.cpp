@@ -1,6 +1,8 @@
 #include "pipeline/sequence/frame_sources.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <mutex>
 
 #include "core/coordinate_limit.hpp"
@@ -10,6 +12,7 @@
 #include "io/gltf/gltf_obj.hpp"
 #include "io/gltf/gltf_scene.hpp"
 #include "io/sha256.hpp"
+#include "pipeline/sequence/input_kinds.hpp"
 #include "pipeline/sequence/point_cache_source.hpp"
 #include "pipeline/sequence/synthetic.hpp"
 
@@ -229,16 +232,71 @@ class GltfSource : public FrameSource {
 
 std::shared_ptr<const FrameSource> make_frame_source(const SequenceJobOptions& config,
                                                      std::shared_ptr<const GltfSequence>* gltf) {
-  const InputOptions& in = config.input;
-  if (in.synthetic) return std::make_shared<SyntheticSource>(*in.synthetic, config.output.dir);
-  if (in.gltf) {
-    auto source = std::make_shared<GltfSource>(*in.gltf);
-    if (gltf) *gltf = source->asset();
-    return source;
+  for (const InputKind& kind : input_kinds())
+    if (kind.given(config.input)) return kind.make(config, gltf);
+  throw std::logic_error("make_frame_source: no input (the config check requires one)");
+}
+
+const std::vector<InputKind>& input_kinds() {
+  static const std::vector<InputKind> kinds = {
+      {"frames", "a folder of OBJ frames", "a folder of OBJ frames, in natural order",
+       [](const InputOptions& in) { return !in.frames.empty(); },
+       [](const SequenceJobOptions& c, std::shared_ptr<const GltfSequence>*)
+           -> std::shared_ptr<const FrameSource> {
+         return std::make_shared<ObjFolderSource>(c.input.frames);
+       }},
+      {"synthetic", "a generated sequence",
+       "a generated drifted sequence (a bending tube) with its ground truth",
+       [](const InputOptions& in) { return in.synthetic.has_value(); },
+       [](const SequenceJobOptions& c, std::shared_ptr<const GltfSequence>*)
+           -> std::shared_ptr<const FrameSource> {
+         return std::make_shared<SyntheticSource>(*c.input.synthetic, c.output.dir);
+       }},
+      {"gltf", "a glTF animation",
+       "a glTF 2.0 animation (.gltf or .glb), with \"mesh\", \"animation\", \"fps\"",
+       [](const InputOptions& in) { return in.gltf.has_value(); },
+       [](const SequenceJobOptions& c, std::shared_ptr<const GltfSequence>* gltf)
+           -> std::shared_ptr<const FrameSource> {
+         auto source = std::make_shared<GltfSource>(*c.input.gltf);
+         if (gltf) *gltf = source->asset();
+         return source;
+       }},
+      {"pc2", "a PC2 point cache, with its \"mesh\"",
+       "a PC2 point cache on a mesh (\"mesh\": its OBJ, PLY or OFF)",
+       [](const InputOptions& in) { return in.pc2.has_value(); },
+       [](const SequenceJobOptions& c, std::shared_ptr<const GltfSequence>*) {
+         return make_point_cache_source(*c.input.point_cache());
+       }},
+      {"mdd", "an MDD point cache, with its \"mesh\"",
+       "an MDD point cache on a mesh (\"mesh\", as for \"pc2\")",
+       [](const InputOptions& in) { return in.mdd.has_value(); },
+       [](const SequenceJobOptions& c, std::shared_ptr<const GltfSequence>*) {
+         return make_point_cache_source(*c.input.point_cache());
+       }},
+  };
+  return kinds;
+}
+
+const std::string& input_kinds_text() {
+  static const std::string text = [] {
+    const std::vector<InputKind>& kinds = input_kinds();
+    std::string t = "one of ";
+    for (size_t k = 0; k < kinds.size(); ++k)
+      t += std::string(k == 0 ? "" : k + 1 == kinds.size() ? " or " : ", ") + "\"" +
+           kinds[k].key + "\" (" + kinds[k].what + ")";
+    return t;
+  }();
+  return text;
+}
+
+std::string inputs_help() {
+  std::string text;
+  for (const InputKind& kind : input_kinds()) {
+    std::string key = "  \"" + std::string(kind.key) + "\"";
+    key.resize(std::max<size_t>(key.size() + 1, 30), ' ');
+    text += key + kind.help + "\n";
   }
-  if (const std::optional<PointCacheInput> cache = in.point_cache())
-    return make_point_cache_source(*cache);
-  return std::make_shared<ObjFolderSource>(in.frames);
+  return text;
 }
 
 }  // namespace sm

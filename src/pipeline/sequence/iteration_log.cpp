@@ -1,23 +1,16 @@
 #include "pipeline/sequence/iteration_log.hpp"
 
+#include <variant>
+
+#include "massage/iteration_fields.hpp"
+
 namespace sm {
 
 std::vector<std::string> iteration_columns() {
-  return {"frame",
-          "file",
-          "iteration",
-          "mu",
-          "energy",
-          "max_dist_m_to_n",
-          "rms_dist_m_to_n",
-          "max_dist_n_to_m",
-          "rms_dist_n_to_m",
-          "max_move",
-          "solver_iterations",
-          "solver_residual",
-          "shear_max",
-          "shear_mean",
-          "shear_p95"};
+  std::vector<std::string> columns = {"frame", "file", "iteration"};
+  for (const char* name : iteration_field_names(kIterationsCsv)) columns.push_back(name);
+  for (const char* name : {"shear_max", "shear_mean", "shear_p95"}) columns.push_back(name);
+  return columns;
 }
 
 std::vector<IterationRow> iteration_rows(
@@ -39,16 +32,14 @@ void append_iteration_rows(CsvWriter& csv, int frame, const std::string& file,
                            const std::vector<IterationRow>& rows) {
   for (const IterationRow& row : rows) {
     csv.cell(frame).cell(file).cell(row.iteration);
-    if (row.stats) {
-      const IterationStats& s = *row.stats;
-      csv.cell(s.mu).cell(s.energy);
-      csv.cell(s.max_dist_m_to_n).cell(s.rms_dist_m_to_n);
-      csv.cell(s.max_dist_n_to_m).cell(s.rms_dist_n_to_m);
-      csv.cell(s.max_move).cell(s.solver_iterations).cell(s.solver_residual);
-    } else {
-      csv.cell("").cell("");
-      csv.cell(0.0).cell(0.0).cell(0.0).cell(0.0);
-      csv.cell("").cell("").cell("");
+    for (const IterationField& field : iteration_fields()) {
+      if (!(field.writers & kIterationsCsv)) continue;
+      if (row.stats)
+        std::visit([&](auto member) { csv.cell((*row.stats).*member); }, field.member);
+      else if (field.zero_before)
+        csv.cell(0.0);
+      else
+        csv.cell("");
     }
     if (row.shear)
       csv.cell(row.shear->max).cell(row.shear->mean).cell(row.shear->p95);

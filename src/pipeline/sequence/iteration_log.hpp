@@ -47,10 +47,11 @@ struct IterationRow {
   std::optional<DistortionSummary> shear;  ///< empty where not measured
 };
 
-/// The columns of iterations.csv: frame, file, iteration, mu, energy, max_dist_m_to_n,
-/// rms_dist_m_to_n, max_dist_n_to_m, rms_dist_n_to_m (m: the frame being optimized, n: the input
-/// frame's surface and samples; the engine's closest-point distances, model units), max_move,
-/// solver_iterations, solver_residual, shear_max, shear_mean, shear_p95.
+/// The columns of iterations.csv: frame, file, iteration, the engine's figures that
+/// iteration_fields() gives to iterations.csv (mu, energy, max_dist_m_to_n, rms_dist_m_to_n,
+/// max_dist_n_to_m, rms_dist_n_to_m — m: the frame being optimized, n: the input frame's surface
+/// and samples; closest-point distances, model units — max_move, solver_iterations,
+/// solver_residual), then shear_max, shear_mean, shear_p95.
 std::vector<std::string> iteration_columns();
 
 /// The rows of one optimized frame: iteration 0 with `before`, every iteration of `result` with

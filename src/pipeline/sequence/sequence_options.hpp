@@ -18,6 +18,7 @@
 #include "core/options_table.hpp"
 #include "pipeline/outputs/checker.hpp"
 #include "pipeline/sequence/fold_check.hpp"
+#include "pipeline/sequence/input_kinds.hpp"
 #include "pipeline/sequence/iteration_log.hpp"
 #include "pipeline/sequence/job_kind.hpp"
 #include "pipeline/cluster/shard.hpp"
@@ -295,8 +296,7 @@ inline const Fields<SequenceJobOptions>& fields_of<SequenceJobOptions>() {
       field<&O::input>("input", any_value(),
                        "the frames: exactly one of `input.frames`, `input.synthetic`, "
                        "`input.gltf`, `input.pc2` and `input.mdd`")
-          .required("\"frames\": a folder of OBJ frames, \"synthetic\" or \"gltf\": a glTF "
-                    "animation"),
+          .required(input_kinds_text()),
       field<&O::templ>("template", any_value(),
                        "T, whose triangle shapes every frame takes: a frame of the input "
                        "(`frame`) or a rest mesh (`mesh`), not both"),
@@ -307,7 +307,7 @@ inline const Fields<SequenceJobOptions>& fields_of<SequenceJobOptions>() {
                           "the sampling of the Metro-style distances in `summary.csv` (`dist_*` "
                           "columns): exact point-to-surface distances from samples at the "
                           "vertices, along the edges and inside the triangles"),
-      field<&O::threads>("threads", closed(0, 4096),
+      field<&O::threads>("threads", threads_range(),
                          "worker threads; 0 = one per core. `--threads` overrides"),
       field<&O::frames_in_flight>("frames_in_flight", closed(0, 1000000),
                                   "frames held in memory at once by the pipeline (read → "

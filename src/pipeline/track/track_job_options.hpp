@@ -98,7 +98,7 @@ inline const Fields<TrackJobOptions>& fields_of<TrackJobOptions>() {
       field<&O::massage>("massage", any_value(),
                          "the Mesh Massage refinement toward each raw frame (T = the template, "
                          "N = the raw frame); its `iterations` are `track.refine_iterations`"),
-      field<&O::threads>("threads", closed(0, 4096),
+      field<&O::threads>("threads", threads_range(),
                          "worker threads inside each frame (frames are tracked in order); 0 = "
                          "one per core. `--threads` overrides"),
   };
