@@ -9,7 +9,7 @@
 #include "massage/massage.hpp"
 #include "core/key_type.hpp"
 #include "massage/massage_keys.hpp"
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

@@ -5,7 +5,7 @@
 #include "geometry/shear.hpp"
 #include "io/options_json.hpp"
 #include "core/errors.hpp"
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 #include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"

@@ -6,7 +6,7 @@
 #include "io/csv.hpp"
 #include "core/errors.hpp"
 #include "mesh/primitives.hpp"
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 #include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "support/job_meshes.hpp"
 

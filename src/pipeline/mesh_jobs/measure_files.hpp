@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 
 namespace sm {
 

@@ -8,7 +8,7 @@
 #include "io/obj.hpp"
 #include "io/ply.hpp"
 #include "massage/massage.hpp"
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 #include "pipeline/mesh_jobs/mesh_job_options.hpp"
 
 namespace sm {

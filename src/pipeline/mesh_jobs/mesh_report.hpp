@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 #include "pipeline/mesh_jobs/mesh_job_types.hpp"
 
 namespace sm {

@@ -1,4 +1,4 @@
-#include "pipeline/mesh_jobs/measures.hpp"
+#include "geometry/measures.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
