@@ -25,21 +25,75 @@ struct BicgstabWorkspace {
   Positions r, rhat, p, v, y, s, z, t;
 };
 
-/// The loop's kernels on n×3 row-major arrays, one pass each (bicgstab.cpp).
+/// The loop's kernels on n×3 row-major arrays, one pass each; inline, so that each loop gets
+/// them specialized (an x·x dot product reads x once).
 namespace krylov {
 
 /// One value per column (x, y, z).
 using Col3 = Eigen::Array<double, 1, 3>;
 
 /// Per-column dot products aᵀb.
-Col3 column_dots(const Positions& a, const Positions& b);
+inline Col3 column_dots(const Positions& a, const Positions& b) {
+  const double* x = a.data();
+  const double* y = b.data();
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0;
+  const Eigen::Index n = a.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    s0 += x[3 * i] * y[3 * i];
+    s1 += x[3 * i + 1] * y[3 * i + 1];
+    s2 += x[3 * i + 2] * y[3 * i + 2];
+  }
+  return Col3(s0, s1, s2);
+}
+
 /// The dot product of a and b as 3n-vectors, summed in storage order.
-double dot_all(const Positions& a, const Positions& b);
+inline double dot_all(const Positions& a, const Positions& b) {
+  const double* x = a.data();
+  const double* y = b.data();
+  double s = 0.0;
+  for (Eigen::Index p = 0; p < a.size(); ++p) s += x[p] * y[p];
+  return s;
+}
+
 /// out = a + k ⊙ b, k one scalar per column (out may be a).
-void axpy_columns(const Positions& a, const Col3& k, const Positions& b, Positions& out);
+inline void axpy_columns(const Positions& a, const Col3& k, const Positions& b, Positions& out) {
+  const Eigen::Index n = a.rows();
+  out.resize(n, 3);
+  const double* x = a.data();
+  const double* y = b.data();
+  double* o = out.data();
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) o[3 * i + c] = x[3 * i + c] + k[c] * y[3 * i + c];
+}
+
+/// out = a + k b, one scalar for all 3n entries (out may be a).
+inline void axpy_all(const Positions& a, double k, const Positions& b, Positions& out) {
+  out.resize(a.rows(), 3);
+  const double* x = a.data();
+  const double* y = b.data();
+  double* o = out.data();
+  for (Eigen::Index p = 0; p < a.size(); ++p) o[p] = x[p] + k * y[p];
+}
+
 /// p = r + β (p − ω v), per column.
-void update_direction(const Positions& r, const Positions& v, const Col3& beta, const Col3& omega,
-                      Positions& p);
+inline void update_direction(const Positions& r, const Positions& v, const Col3& beta,
+                             const Col3& omega, Positions& p) {
+  double* pp = p.data();
+  const double* rr = r.data();
+  const double* vv = v.data();
+  for (Eigen::Index i = 0; i < p.rows(); ++i)
+    for (int c = 0; c < 3; ++c)
+      pp[3 * i + c] = rr[3 * i + c] + beta[c] * (pp[3 * i + c] - omega[c] * vv[3 * i + c]);
+}
+
+/// p = r + β (p − ω v), one β and ω for all 3n entries.
+inline void update_direction_all(const Positions& r, const Positions& v, double beta, double omega,
+                                 Positions& p) {
+  double* pp = p.data();
+  const double* rr = r.data();
+  const double* vv = v.data();
+  for (Eigen::Index q = 0; q < p.size(); ++q) pp[q] = rr[q] + beta * (pp[q] - omega * vv[q]);
+}
 
 }  // namespace krylov
 
@@ -50,6 +104,13 @@ void update_direction(const Positions& r, const Positions& v, const Col3& beta, 
 struct ColumnScalars {
   static krylov::Col3 dot(const Positions& a, const Positions& b) {
     return krylov::column_dots(a, b);
+  }
+  static void axpy(const Positions& a, const krylov::Col3& k, const Positions& b, Positions& out) {
+    krylov::axpy_columns(a, k, b, out);
+  }
+  static void update_direction(const Positions& r, const Positions& v, const krylov::Col3& beta,
+                               const krylov::Col3& omega, Positions& p) {
+    krylov::update_direction(r, v, beta, omega, p);
   }
   /// Marks the columns at their target, for good; true when all are.
   static bool converged(const krylov::Col3& res, const krylov::Col3& target,
@@ -75,6 +136,14 @@ struct SharedScalars {
   static krylov::Col3 dot(const Positions& a, const Positions& b) {
     return krylov::Col3::Constant(krylov::dot_all(a, b));
   }
+  // The three scalars are equal: one flat pass over the 3n entries.
+  static void axpy(const Positions& a, const krylov::Col3& k, const Positions& b, Positions& out) {
+    krylov::axpy_all(a, k[0], b, out);
+  }
+  static void update_direction(const Positions& r, const Positions& v, const krylov::Col3& beta,
+                               const krylov::Col3& omega, Positions& p) {
+    krylov::update_direction_all(r, v, beta[0], omega[0], p);
+  }
   static bool at_target(const krylov::Col3& res, const krylov::Col3& target) {
     return res[0] <= target[0] && res[1] <= target[1] && res[2] <= target[2];
   }
@@ -95,7 +164,6 @@ template <class Scalars, class Operator, class Preconditioner>
 SolveStats bicgstab_loop(const Operator& A, const Preconditioner& M, const Positions& R,
                          Positions& X, double tolerance, int max_iterations, BicgstabWorkspace& w,
                          const std::array<double, 3>& scale) {
-  using krylov::axpy_columns;
   using krylov::Col3;
   using krylov::column_dots;
   SolveStats st;
@@ -128,7 +196,7 @@ SolveStats bicgstab_loop(const Operator& A, const Preconditioner& M, const Posit
       beta[c] = (rho_new[c] / rho[c]) * (alpha[c] / omega[c]);
     }
     rho = rho_new;
-    krylov::update_direction(r, v, beta, omega, p);
+    Scalars::update_direction(r, v, beta, omega, p);
     M.apply(p, y);
     A.apply(y, v);
     const Col3 rv = Scalars::dot(rhat, v);
@@ -139,8 +207,8 @@ SolveStats bicgstab_loop(const Operator& A, const Preconditioner& M, const Posit
       alpha[c] = rho[c] / rv[c];
       step[c] = alpha[c];
     }
-    axpy_columns(r, -step, v, s);  // s = r − α v
-    axpy_columns(X, step, y, X);   // X += α y
+    Scalars::axpy(r, -step, v, s);  // s = r − α v
+    Scalars::axpy(X, step, y, X);   // X += α y
     const Col3 s_norm = column_dots(s, s).sqrt();
     const Col3 second = Scalars::half_step(s_norm, target, done);
     if ((second == 0.0).all()) {
@@ -159,8 +227,8 @@ SolveStats bicgstab_loop(const Operator& A, const Preconditioner& M, const Posit
         omega[c] = tt[c] > 0.0 ? ts[c] / tt[c] : 0.0;
         om[c] = omega[c];
       }
-      axpy_columns(X, om, w.z, X);   // X += ω z
-      axpy_columns(s, -om, w.t, r);  // r = s − ω t
+      Scalars::axpy(X, om, w.z, X);   // X += ω z
+      Scalars::axpy(s, -om, w.t, r);  // r = s − ω t
       const Col3 rn = column_dots(r, r).sqrt();
       for (int c = 0; c < 3; ++c)
         if (!done[c]) res[c] = second[c] != 0.0 ? rn[c] : s_norm[c];
