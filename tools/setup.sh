@@ -50,7 +50,6 @@ extra() {  # extra NAME CHECK-COMMAND PACKAGE...
 extra "matplotlib" "/usr/bin/python3 -c 'import matplotlib'" python3-matplotlib
 extra "clang" "command -v clang++" clang
 extra "clang runtimes" "have_pkg libclang-rt-dev || have_pkg libclang-rt-14-dev" libclang-rt-dev
-extra "OpenMP for clang" "have_pkg libomp-dev || have_pkg libomp-14-dev" libomp-dev
 extra "dpkg-source (oneTBB source for ThreadSanitizer)" "command -v dpkg-source" dpkg-dev
 extra "node and npm" "command -v node && command -v npm" nodejs npm
 # kubectl for the Kubernetes manifest's test; Debian's conflicts with other kubectl packages.

@@ -1,29 +1,9 @@
 #include "massage/coupled_solver.hpp"
 
 #include <Eigen/SparseLU>
-#include <cmath>
+#include <algorithm>
 
 namespace sm {
-namespace {
-
-double dot_all(const Positions& a, const Positions& b) {
-  const double* x = a.data();
-  const double* y = b.data();
-  double s = 0.0;
-  for (Eigen::Index p = 0; p < a.size(); ++p) s += x[p] * y[p];
-  return s;
-}
-
-std::array<double, 3> column_norms(const Positions& a) {
-  std::array<double, 3> s{0.0, 0.0, 0.0};
-  const double* x = a.data();
-  for (Eigen::Index i = 0; i < a.rows(); ++i)
-    for (int c = 0; c < 3; ++c) s[c] += x[3 * i + c] * x[3 * i + c];
-  for (double& v : s) v = std::sqrt(v);
-  return s;
-}
-
-}  // namespace
 
 void multiply_coupled(const SparseMatrixR& K, const VertexBlocks& D, const Positions& X,
                       Positions& Y) {
@@ -54,65 +34,22 @@ void multiply_coupled(const SparseMatrixR& K, const VertexBlocks& D, const Posit
   }
 }
 
+namespace {
+
+// K ⊗ I₃ − D as the operator of bicgstab_loop().
+struct CoupledOperator {
+  const SparseMatrixR& K;
+  const VertexBlocks& D;
+  void apply(const Positions& X, Positions& Y) const { multiply_coupled(K, D, X, Y); }
+};
+
+}  // namespace
+
 SolveStats bicgstab_coupled(const SparseMatrixR& K, const VertexBlocks& D, const Ilu0& M,
-                            const Positions& R, Positions& X, double tolerance,
-                            int max_iterations, BicgstabWorkspace& w,
-                            const std::array<double, 3>& scale) {
-  SolveStats st;
-  const int n = static_cast<int>(K.rows());
-  Positions &r = w.r, &rhat = w.rhat, &p = w.p, &v = w.v, &y = w.y, &s = w.s, &z = w.z, &t = w.t;
-  multiply_coupled(K, D, X, r);
-  r = R - r;
-  rhat = r;
-  p.setZero(n, 3);
-  v.setZero(n, 3);
-  std::array<double, 3> target;
-  for (int c = 0; c < 3; ++c) target[c] = tolerance * (scale[c] > 0.0 ? scale[c] : 1.0);
-  std::array<double, 3> res = column_norms(r);
-  auto converged = [&] {
-    return res[0] <= target[0] && res[1] <= target[1] && res[2] <= target[2];
-  };
-  auto finish = [&](bool ok, const char* why) {
-    st.ok = ok;
-    st.message = why;
-    for (int c = 0; c < 3; ++c)
-      st.residual = std::max(st.residual, res[c] / (target[c] / tolerance));
-    return st;
-  };
-  if (converged()) return finish(true, "");
-  double rho = 1.0, alpha = 1.0, omega = 1.0;
-  for (st.iterations = 1; st.iterations <= max_iterations; ++st.iterations) {
-    const double rho_new = dot_all(rhat, r);
-    if (rho_new == 0.0 || omega == 0.0)
-      return finish(false, "BiCGSTAB breakdown (rho or omega is 0)");
-    const double beta = (rho_new / rho) * (alpha / omega);
-    rho = rho_new;
-    p = r + beta * (p - omega * v);
-    M.apply(p, y);
-    multiply_coupled(K, D, y, v);
-    const double rv = dot_all(rhat, v);
-    if (rv == 0.0) return finish(false, "BiCGSTAB breakdown (r̂·v is 0)");
-    alpha = rho / rv;
-    s = r - alpha * v;
-    X += alpha * y;
-    res = column_norms(s);
-    if (converged()) {
-      r.swap(s);
-      return finish(true, "");
-    }
-    M.apply(s, z);
-    multiply_coupled(K, D, z, t);
-    const double tt = dot_all(t, t);
-    omega = tt > 0.0 ? dot_all(t, s) / tt : 0.0;
-    X += omega * z;
-    r = s - omega * t;
-    res = column_norms(r);
-    if (!std::isfinite(res[0] + res[1] + res[2]))
-      return finish(false, "BiCGSTAB produced a non-finite residual");
-    if (converged()) return finish(true, "");
-  }
-  st.iterations = max_iterations;
-  return finish(false, "BiCGSTAB did not reach the tolerance");
+                            const Positions& R, Positions& X, double tolerance, int max_iterations,
+                            BicgstabWorkspace& w, const std::array<double, 3>& scale) {
+  return bicgstab_loop<SharedScalars>(CoupledOperator{K, D}, M, R, X, tolerance, max_iterations, w,
+                                      scale);
 }
 
 SolveStats solve_coupled_direct(const SparseMatrixR& K, const VertexBlocks& D, const Positions& R,

@@ -5,9 +5,10 @@
 /// isotropic terms of B, which couples x, y and z. So the 3n×3n matrix has 3×3 blocks on K's
 /// pattern, and a product is one pass over the pattern with a 3×3 block per entry.
 ///
-/// BiCGSTAB here uses one set of scalars for the whole 3n-vector (the columns are coupled) and
-/// the ILU(0) factors of K with D's mean diagonal taken off (an isotropic preconditioner on the
-/// same pattern, factored by the same schedule); the fall-back is a sparse LU of the 3n×3n matrix.
+/// BiCGSTAB here (bicgstab.hpp, SharedScalars) uses one set of scalars for the whole 3n-vector
+/// (the columns are coupled) and the ILU(0) factors of K with D's mean diagonal taken off (an
+/// isotropic preconditioner on the same pattern, factored by the same schedule); the fall-back is
+/// a sparse LU of the 3n×3n matrix.
 #include <array>
 #include <vector>
 

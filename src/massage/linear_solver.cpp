@@ -129,61 +129,11 @@ void Ilu0::apply(const Positions& R, Positions& Z) const {
 
 namespace {
 
-using Col3 = Eigen::Array<double, 1, 3>;
-
-// Per-column dot products of two n×3 row-major arrays, one pass.
-Col3 column_dots(const Positions& a, const Positions& b) {
-  const double* x = a.data();
-  const double* y = b.data();
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0;
-  const Eigen::Index n = a.rows();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    s0 += x[3 * i] * y[3 * i];
-    s1 += x[3 * i + 1] * y[3 * i + 1];
-    s2 += x[3 * i + 2] * y[3 * i + 2];
-  }
-  return Col3(s0, s1, s2);
-}
-
-// out = a + k ⊙ b, with one scalar per column (k broadcast along the rows).
-void axpy_columns(const Positions& a, const Col3& k, const Positions& b, Positions& out) {
-  const Eigen::Index n = a.rows();
-  out.resize(n, 3);
-  const double* x = a.data();
-  const double* y = b.data();
-  double* o = out.data();
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (int c = 0; c < 3; ++c) o[3 * i + c] = x[3 * i + c] + k[c] * y[3 * i + c];
-}
-
-// p = r + β (p − ω v), per column.
-void update_direction(const Positions& r, const Positions& v, const Col3& beta, const Col3& omega,
-                      Positions& p) {
-  double* pp = p.data();
-  const double* rr = r.data();
-  const double* vv = v.data();
-  for (Eigen::Index i = 0; i < p.rows(); ++i)
-    for (int c = 0; c < 3; ++c)
-      pp[3 * i + c] = rr[3 * i + c] + beta[c] * (pp[3 * i + c] - omega[c] * vv[3 * i + c]);
-}
-
-// BiCGSTAB's stabilizing half-step for the columns where `second` is 1: z = M⁻¹ s, t = K z,
-// ω = t·s / t·t, X += ω z, r = s − ω t (r = s where ω is 0). Returns ‖r‖ per column.
-Col3 stabilize(const SparseMatrixR& K, const Ilu0& M, const Col3& second, BicgstabWorkspace& w,
-               Col3& omega, Positions& X) {
-  M.apply(w.s, w.z);
-  multiply(K, w.z, w.t);
-  const Col3 ts = column_dots(w.t, w.s), tt = column_dots(w.t, w.t);
-  Col3 om = Col3::Zero();
-  for (int c = 0; c < 3; ++c) {
-    if (second[c] == 0.0) continue;
-    omega[c] = tt[c] > 0.0 ? ts[c] / tt[c] : 0.0;
-    om[c] = omega[c];
-  }
-  axpy_columns(X, om, w.z, X);       // X += ω z
-  axpy_columns(w.s, -om, w.t, w.r);  // r = s − ω t
-  return column_dots(w.r, w.r).sqrt();
-}
+// K as the operator of bicgstab_loop().
+struct SparseOperator {
+  const SparseMatrixR& K;
+  void apply(const Positions& X, Positions& Y) const { multiply(K, X, Y); }
+};
 
 }  // namespace
 
@@ -228,75 +178,15 @@ std::array<double, 3> centred_scale(const SparseMatrixR& K, const Positions& R, 
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, Positions& X,
                     double tolerance, int max_iterations, BicgstabWorkspace& w,
                     const std::array<double, 3>* scale) {
-  SolveStats st;
-  const int n = static_cast<int>(K.rows());
-  Positions &r = w.r, &rhat = w.rhat, &p = w.p, &v = w.v, &y = w.y, &s = w.s;
-  multiply(K, X, r);
-  r = R - r;
-  rhat = r;
-  p.setZero(n, 3);
-  v.setZero(n, 3);
-  const Col3 rhs_norm =
-      scale ? Col3((*scale)[0], (*scale)[1], (*scale)[2]) : Col3(column_dots(R, R).sqrt());
-  Col3 target;
-  for (int c = 0; c < 3; ++c) target[c] = tolerance * (rhs_norm[c] > 0.0 ? rhs_norm[c] : 1.0);
-  Col3 rho = Col3::Ones(), alpha = Col3::Ones(), omega = Col3::Ones();
-  Col3 res = column_dots(r, r).sqrt();
-  std::array<bool, 3> done{};
-  auto all_done = [&] {
-    for (int c = 0; c < 3; ++c) done[c] = done[c] || res[c] <= target[c];
-    return done[0] && done[1] && done[2];
-  };
-  auto finish = [&](bool ok, const char* why) {
-    st.ok = ok;
-    st.message = why;
-    for (int c = 0; c < 3; ++c)
-      st.residual = std::max(st.residual, res[c] / (target[c] / tolerance));
-    return st;
-  };
-  if (all_done()) return finish(true, "");
-  for (st.iterations = 1; st.iterations <= max_iterations; ++st.iterations) {
-    // A converged column keeps its X: its step sizes are zero from here on.
-    const Col3 rho_new = column_dots(rhat, r);
-    Col3 beta = Col3::Zero();
-    for (int c = 0; c < 3; ++c) {
-      if (done[c]) continue;
-      if (rho_new[c] == 0.0 || omega[c] == 0.0)
-        return finish(false, "BiCGSTAB breakdown (rho or omega is 0)");
-      beta[c] = (rho_new[c] / rho[c]) * (alpha[c] / omega[c]);
-    }
-    rho = rho_new;
-    update_direction(r, v, beta, omega, p);
-    M.apply(p, y);
-    multiply(K, y, v);
-    const Col3 rv = column_dots(rhat, v);
-    Col3 step = Col3::Zero();
-    for (int c = 0; c < 3; ++c) {
-      if (done[c]) continue;
-      if (rv[c] == 0.0) return finish(false, "BiCGSTAB breakdown (r̂·v is 0)");
-      alpha[c] = rho[c] / rv[c];
-      step[c] = alpha[c];
-    }
-    axpy_columns(r, -step, v, s);  // s = r − α v
-    axpy_columns(X, step, y, X);   // X += α y
-    const Col3 s_norm = column_dots(s, s).sqrt();
-    Col3 second = Col3::Zero();  // 1 for the columns that need the stabilizing half-step
-    for (int c = 0; c < 3; ++c)
-      if (!done[c] && s_norm[c] > target[c]) second[c] = 1.0;
-    if ((second == 0.0).all()) {
-      for (int c = 0; c < 3; ++c)
-        if (!done[c]) res[c] = s_norm[c];
-      r.swap(s);
-    } else {
-      const Col3 rn = stabilize(K, M, second, w, omega, X);
-      for (int c = 0; c < 3; ++c)
-        if (!done[c]) res[c] = second[c] != 0.0 ? rn[c] : s_norm[c];
-    }
-    if (!res.isFinite().all()) return finish(false, "BiCGSTAB produced a non-finite residual");
-    if (all_done()) return finish(true, "");
+  std::array<double, 3> size;
+  if (scale) {
+    size = *scale;
+  } else {
+    const krylov::Col3 norm = krylov::column_dots(R, R).sqrt();
+    size = {norm[0], norm[1], norm[2]};
   }
-  st.iterations = max_iterations;
-  return finish(false, "BiCGSTAB did not reach the tolerance");
+  return bicgstab_loop<ColumnScalars>(SparseOperator{K}, M, R, X, tolerance, max_iterations, w,
+                                      size);
 }
 
 struct DirectSolver::Impl {

@@ -4,20 +4,13 @@
 /// warm-started from the current positions, and a sparse LU fall-back.
 #include <array>
 #include <memory>
-#include <string>
 #include <vector>
 
 #include "geometry/weights.hpp"
+#include "massage/bicgstab.hpp"
 #include "mesh/mesh.hpp"
 
 namespace sm {
-
-struct SolveStats {
-  bool ok = false;
-  int iterations = 0;
-  double residual = 0.0;  ///< max over the columns of ‖R − K X‖ / ‖R‖
-  std::string message;    ///< why it failed, when !ok
-};
 
 /// Y = K X for n×3 X, one pass over K.
 void multiply(const SparseMatrixR& K, const Positions& X, Positions& Y);
@@ -62,13 +55,9 @@ class Ilu0 {
   std::vector<double> lu_;
 };
 
-/// Scratch vectors of bicgstab(), kept between calls so iterations allocate nothing.
-struct BicgstabWorkspace {
-  Positions r, rhat, p, v, y, s, z, t;
-};
-
-/// Preconditioned BiCGSTAB (van der Vorst) on the three columns together, each column with its
-/// own scalars and stopping test ‖R − K X‖ <= tolerance · ‖R‖. X holds the initial guess.
+/// Preconditioned BiCGSTAB (van der Vorst, bicgstab.hpp) on the three columns together, each
+/// column with its own scalars and stopping test ‖R − K X‖ <= tolerance · ‖R‖ (ColumnScalars).
+/// X holds the initial guess.
 /// With `scale` (3 positive values), column c stops at ‖R − K X‖ <= tolerance · scale[c] instead
 /// (see centred_scale), and the residual reported is relative to it.
 SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Positions& R,

@@ -167,9 +167,13 @@ bool MassageRun::assemble(IterationStats& it) {
 // The plane term's blocks D for the current correspondences, their part of the right-hand side
 // (−D v̂), and the preconditioner's matrix: K with D's mean diagonal taken off.
 void MassageRun::add_plane_term() {
-  const PlaneInputs in{&s_.pattern, &s_.F,     &M_.V,   &v_hat_,   &reference_.mesh().F,
-                       &normals_n_, &reference_.samples(), &w_hat_, &alpha_, &beta_,
-                       &epsilon_,   &s_.pinned, mu_};
+  const PlaneInputs in{s_.pattern, s_.F,
+                       M_.V,       reference_.mesh().F,
+                       normals_n_, reference_.samples(),
+                       v_hat_,     w_hat_,
+                       alpha_,     beta_,
+                       epsilon_,   s_.pinned,
+                       mu_};
   plane_blocks(in, D_, rhs_);
   double* kp = K_pre_.valuePtr();
   const double* k = K_.valuePtr();

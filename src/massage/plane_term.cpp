@@ -63,26 +63,26 @@ Vec3 add_projector(std::array<double, 6>& block, double d, const Vec3& nrm, cons
 }  // namespace
 
 void plane_blocks(const PlaneInputs& in, VertexBlocks& D, Positions& rhs) {
-  const SystemPattern& pattern = *in.pattern;
-  const std::vector<unsigned char>& pinned = *in.pinned;
-  const Eigen::VectorXd& eps = *in.epsilon;
+  const SystemPattern& pattern = in.pattern;
+  const std::vector<unsigned char>& pinned = in.pinned;
+  const Eigen::VectorXd& eps = in.epsilon;
   D.assign(pattern.shape_matrix().nonZeros(), {0.0, 0.0, 0.0, 0.0, 0.0, 0.0});
   const int n = pattern.size();
   for (int i = 0; i < n; ++i) {
-    const SurfacePoint& sp = (*in.v_hat)[i];
-    const double d = (1.0 - in.mu) * (*in.alpha)[i] * (1.0 - eps[i]);
+    const SurfacePoint& sp = in.v_hat[i];
+    const double d = (1.0 - in.mu) * in.alpha[i] * (1.0 - eps[i]);
     if (pinned[i] || sp.triangle < 0 || !(d > 0.0)) continue;
     Vec3 nrm = Vec3::Zero();
     for (int a = 0; a < 3; ++a)
-      nrm += sp.bary[a] * in.normals_n->row((*in.N_F)(sp.triangle, a)).transpose();
+      nrm += sp.bary[a] * in.normals_n.row(in.N_F(sp.triangle, a)).transpose();
     if (!(nrm.norm() > 0.0)) continue;  // no normal: point-to-point
     nrm.normalize();
     rhs.row(i) -= add_projector(D[pattern.diagonal_slot(i)], d, nrm, sp.point).transpose();
   }
-  const Triangles& F = *in.F;
-  const Positions& V = *in.V;
-  for (size_t j = 0; j < in.w_hat->size(); ++j) {
-    const SurfacePoint& sp = (*in.w_hat)[j];
+  const Triangles& F = in.F;
+  const Positions& V = in.V;
+  for (size_t j = 0; j < in.w_hat.size(); ++j) {
+    const SurfacePoint& sp = in.w_hat[j];
     if (sp.triangle < 0) continue;
     const int t = sp.triangle;
     const Vec3 p0 = V.row(F(t, 0)).transpose();
@@ -90,9 +90,9 @@ void plane_blocks(const PlaneInputs& in, VertexBlocks& D, Positions& rhs) {
     if (!(nrm.norm() > 0.0)) continue;
     nrm.normalize();
     const double e = (eps[F(t, 0)] + eps[F(t, 1)] + eps[F(t, 2)]) / 3.0;
-    const double d = (1.0 - in.mu) * (*in.beta)[static_cast<int>(j)] * (1.0 - e);
+    const double d = (1.0 - in.mu) * in.beta[static_cast<int>(j)] * (1.0 - e);
     if (!(d > 0.0)) continue;
-    const Vec3 w = in.samples->row(static_cast<int>(j)).transpose();
+    const Vec3 w = in.samples.row(static_cast<int>(j)).transpose();
     const std::array<int, 9>& slot = pattern.triangle_slots(t);
     for (int a = 0; a < 3; ++a) {
       if (pinned[F(t, a)]) continue;

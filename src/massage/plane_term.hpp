@@ -26,26 +26,33 @@ Eigen::VectorXd tangential_stiffness(const Positions& T, const Positions& S, con
                                      const Topology& topology, double stiffness, double adapt,
                                      int passes);
 
+/// What the plane term reads: M and its correspondences on N, N's normals, the weights. All
+/// references, to the caller's arrays (which outlive the call of plane_blocks()).
+struct PlaneInputs {
+  const SystemPattern& pattern;
+  // M: its triangles (the pattern's), its positions, n vertices.
+  const Triangles& F;
+  const Positions& V;
+  // N: its triangles and vertex normals, and the samples w_j on it.
+  const Triangles& N_F;
+  const Positions& normals_n;
+  const Positions& samples;
+  // The correspondences: v̂_i on N (n), ŵ_j on M (one per sample).
+  const std::vector<SurfacePoint>& v_hat;
+  const std::vector<SurfacePoint>& w_hat;
+  // α_i (n), β_j (per sample), ε_i (n, tangential_stiffness()), the pinned rows (n flags), μ.
+  const Eigen::VectorXd& alpha;
+  const Eigen::VectorXd& beta;
+  const Eigen::VectorXd& epsilon;
+  const std::vector<unsigned char>& pinned;
+  double mu;
+};
+
 /// The plane term's blocks D on the pattern's slots (nnz) and its part of the right-hand side
 /// (rhs −= D-part of the targets), for the current correspondences. Vertex i's term as above;
 /// sample w_j's term (eq. 4's β-part) the same with M's normal n_j on the triangle ŵ_j lies on and
 /// ε_j the mean of that triangle's ε: (1−μ)β_j(1−ε_j) b_a b_b (I − n_j n_jᵀ) on slot (a, b).
-/// Rows of pinned vertices get none. `normals_n`: N's vertex normals.
-struct PlaneInputs {
-  const SystemPattern* pattern;
-  const Triangles* F;         // M's (= the pattern's) triangles
-  const Positions* V;         // M's positions
-  const std::vector<SurfacePoint>* v_hat;  // on N, per vertex of M
-  const Triangles* N_F;
-  const Positions* normals_n;
-  const Positions* samples;                // w_j
-  const std::vector<SurfacePoint>* w_hat;  // on M, per sample
-  const Eigen::VectorXd* alpha;
-  const Eigen::VectorXd* beta;
-  const Eigen::VectorXd* epsilon;
-  const std::vector<unsigned char>* pinned;
-  double mu;
-};
+/// Rows of pinned vertices get none.
 void plane_blocks(const PlaneInputs& in, VertexBlocks& D, Positions& rhs);
 
 }  // namespace sm
