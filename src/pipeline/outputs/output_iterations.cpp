@@ -24,8 +24,12 @@ const char* IterationsCsvOutput::help() {
          "(\"iterations\")\n";
 }
 
+// A shard writes iterations.shard-I-of-N.csv; the iterations.csv that `seqmassage merge` builds
+// from the shards is named too, as the plan names the merged summary and report.
 std::vector<fs::path> IterationsCsvOutput::files(const std::vector<int>&) const {
-  return {dir_ / "iterations.csv"};
+  std::vector<fs::path> out = {dir_ / iterations_file_name(shard_)};
+  if (shard_.sharded()) out.push_back(dir_ / iterations_file_name({}));
+  return out;
 }
 
 std::vector<fs::path> IterationsCsvOutput::folders() const {
