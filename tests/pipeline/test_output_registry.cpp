@@ -116,8 +116,8 @@ TEST_CASE("every output predicts exactly the files a run writes") {
     std::string name;
     SequenceJobOptions config;
     // What the plan names that this run does not write: for a shard, what `seqmassage merge`
-    // writes from the shards (summary.csv, report.json, iterations.csv, the assembled files;
-    // report.html, which merge writes too, is not named by a shard's plan).
+    // writes from the shards (summary.csv, report.json, iterations.csv, report.html, the
+    // assembled files).
     std::set<std::string> merged = {};
   };
   std::vector<Case> cases;
@@ -145,7 +145,8 @@ TEST_CASE("every output predicts exactly the files a run writes") {
   {
     SequenceJobOptions c = registry_tube_job(dir / "shard", 4);
     c.shard = {0, 2};
-    const std::set<std::string> merged = {"summary.csv", "report.json", "iterations.csv"};
+    const std::set<std::string> merged = {"summary.csv", "report.json", "iterations.csv",
+                                          "report.html"};
     cases.push_back({"shard 1/2, obj and every per-frame output", c, merged});
     c.output.format = OutputFormat::Pc2;
     c.output.dir = dir / "shard" / "out_pc2";

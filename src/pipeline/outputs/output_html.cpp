@@ -55,7 +55,7 @@ std::vector<fs::path> HtmlReportOutput::files(const std::vector<int>& frames) co
   std::vector<fs::path> out;
   for (int i : frames) out.push_back(dir / data_file(source_->name(i)));
   out.push_back(dir / kDataDir / "template.bin");
-  if (!config_.shard.sharded()) out.push_back(dir / kPage);
+  out.push_back(dir / kPage);  // a shard's: written by `seqmassage merge`, as summary.csv
   return out;
 }
 
@@ -66,7 +66,9 @@ std::vector<fs::path> HtmlReportOutput::folders() const {
 std::string HtmlReportOutput::describe(const std::vector<int>& frames) const {
   std::string text = "  report_data/<name>.bin, template.bin (" + frames_text(int(frames.size())) +
                      ": the player's positions and shear)\n";
-  if (!config_.shard.sharded())
+  if (config_.shard.sharded())
+    text += "  report.html: written from every shard's data by seqmassage merge\n";
+  else
     text += "  report.html (at most " + format_number(config_.output.html_max_mb) + " MB; " +
             (html_player_available() ? std::string("with the 3D player")
                                      : html_player_missing_reason()) +
