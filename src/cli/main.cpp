@@ -431,6 +431,9 @@ int guarded(Body&& body, const std::string& config_name) {
               << (what.rfind("--", 0) == 0 || config_name.empty() ? "" : config_name + ": ") << what
               << "\n";
     return kUsage;
+  } catch (const sm::OptionError& e) {  // the jobs name the path (with_option_path): a fallback
+    std::cerr << "seqmassage: " << e.what() << "\n";
+    return kUsage;
   } catch (const sm::InputError& e) {
     std::cerr << "seqmassage: input error: " << e.what() << "\n";
     return kInput;

@@ -35,29 +35,40 @@ std::string describe_numbers(const ValueSpec& s) {
   return std::string(std::isinf(s.hi) ? "a number " : "a number in ") + interval_text(s, false);
 }
 
-ConfigError number_error(const std::string& path, const ValueSpec& spec, double x) {
-  return ConfigError(path + ": expected " + describe_numbers(spec) + ", got " + number_text(x));
+std::string number_reason(const ValueSpec& spec, double x) {
+  return "expected " + describe_numbers(spec) + ", got " + number_text(x);
 }
 
-void check_ranges(const Entries& entries, const std::string& prefix) {
+ConfigError number_error(const std::string& path, const ValueSpec& spec, double x) {
+  return ConfigError(path + ": " + number_reason(spec, x));
+}
+
+namespace {
+
+void check_entries(const Entries& entries, const std::string& prefix) {
   for (const Entry& e : entries) {
     const ValueSpec& spec = e.info->spec;
-    const std::string path = prefix + "." + std::string(e.info->key);
+    const std::string key = prefix.empty() ? std::string(e.info->key)
+                                           : prefix + "." + std::string(e.info->key);
     const auto check_integer = [&](int v) {  // bounds by key: checked where the keys are read
       if (spec.lo_key.empty() && spec.hi_key.empty() && !spec.contains(v))
-        throw ConfigError(path + ": expected " + describe_integers(spec.lo, spec.hi) + ", got " +
-                          std::to_string(v));
+        throw OptionError(key, "expected " + describe_integers(spec.lo, spec.hi) + ", got " +
+                                   std::to_string(v));
     };
     const auto check_number = [&](double v) {
-      if (!spec.contains(v)) throw number_error(path, spec, v);
+      if (!spec.contains(v)) throw OptionError(key, number_reason(spec, v));
     };
     if (auto* i = std::get_if<int*>(&e.value)) check_integer(**i);
     if (auto* i = std::get_if<std::optional<int>*>(&e.value); i && **i) check_integer(***i);
     if (auto* x = std::get_if<double*>(&e.value)) check_number(**x);
     if (auto* x = std::get_if<std::optional<double>*>(&e.value); x && **x) check_number(***x);
     if (auto* o = std::get_if<ObjectRef>(&e.value); o && o->present(o->target))
-      check_ranges(o->entries(o->target), o->mode == ObjectRef::Mode::Inline ? prefix : path);
+      check_entries(o->entries(o->target), o->mode == ObjectRef::Mode::Inline ? prefix : key);
   }
 }
+
+}  // namespace
+
+void check_option_ranges(const Entries& entries) { check_entries(entries, ""); }
 
 }  // namespace sm

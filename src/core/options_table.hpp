@@ -47,6 +47,8 @@ std::string interval_text(const ValueSpec& spec, bool integer);
 std::string describe_integers(double lo, double hi);
 /// "a number > 0", "a number in [0, 1)".
 std::string describe_numbers(const ValueSpec& spec);
+/// Why a number is outside `spec`: "expected a number in [0, 1], got 1.5".
+std::string number_reason(const ValueSpec& spec, double x);
 /// The error of a number outside `spec`: "<path>: expected a number in [0, 1], got 1.5".
 ConfigError number_error(const std::string& path, const ValueSpec& spec, double x);
 
@@ -219,13 +221,19 @@ Entries entries_of(S& object) {
   return out;
 }
 
-/// Throws ConfigError "<prefix>.<key>: expected ..., got ..." for the first integer or number
-/// (nested objects included) outside its table's range; for options built in code.
-void check_ranges(const Entries& entries, const std::string& prefix);
+/// Throws OptionError("<key>", "expected ..., got ...") for the first integer or number (nested
+/// objects included, "<object>.<key>") outside its table's range: for options built in code, in
+/// the numerical modules, which name the member and leave the config path to their caller.
+void check_option_ranges(const Entries& entries);
+template <class S>
+void check_option_ranges(const S& options) {
+  S copy = options;  // entries_of gives write access; the check only reads
+  check_option_ranges(entries_of(copy));
+}
+/// check_option_ranges in the config's words: ConfigError "<prefix>.<key>: expected ..., got ...".
 template <class S>
 void check_ranges(const S& options, const std::string& prefix) {
-  S copy = options;  // entries_of gives write access; the check only reads
-  check_ranges(entries_of(copy), prefix);
+  with_option_path(prefix, [&] { check_option_ranges(options); });
 }
 
 namespace options_detail {

@@ -287,7 +287,7 @@ DistanceStats measure(const TriMesh& A, const TriangleBvh& B, const DistanceOpti
                       const TrianglePlanes* planes_b, const Topology* topology_b,
                       const DistanceLayout* layout, DistanceWorkspace* work) {
   validate_mesh(A, "one_sided_distance (A)");
-  check_ranges(options, "measures");  // the ranges of fields_of<DistanceOptions>()
+  check_option_ranges(options);  // the ranges of fields_of<DistanceOptions>()
   const int m = A.num_triangles();
   if (m == 0) return DistanceStats{};
   if (B.empty()) throw InputError("one_sided_distance: the mesh B has no triangles");

@@ -24,7 +24,8 @@ namespace sm {
 /// Deterministic: the result does not depend on the number of threads. No samples (A has no
 /// triangles) gives all zeros.
 /// Throws InputError if A is invalid (validate_mesh) or A has triangles but B has none, and
-/// ConfigError if options.spacing is not a positive number or refine_above not in [0, 1].
+/// OptionError (naming the member) if options.spacing is not a positive number or refine_above
+/// not in [0, 1].
 DistanceStats one_sided_distance(const TriMesh& A, const TriangleBvh& B,
                                  const DistanceOptions& options = {},
                                  const TrianglePlanes* planes_b = nullptr,

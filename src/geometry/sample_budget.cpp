@@ -78,11 +78,12 @@ void check_sample_budget(double samples, long triangles, double spacing, bool up
   if (!(samples > budget)) return;
   char value[32];
   std::snprintf(value, sizeof value, "%.9g", spacing);
-  throw ConfigError("measures.spacing: " + std::string(value) + " would take " +
-                    (up_to ? "up to " : "") + integer_text(samples) + " samples on " + what +
-                    " (" + std::to_string(triangles) + " triangles), more than the budget of " +
-                    integer_text(budget) + " (50 million, or 100 per triangle); choose a larger "
-                    "spacing");
+  throw OptionError("spacing", std::string(value) + " would take " + (up_to ? "up to " : "") +
+                                   integer_text(samples) + " samples on " + what + " (" +
+                                   std::to_string(triangles) +
+                                   " triangles), more than the budget of " +
+                                   integer_text(budget) +
+                                   " (50 million, or 100 per triangle); choose a larger spacing");
 }
 
 void check_distance_samples(const TriMesh& A, const DistanceLayout& layout,

@@ -41,8 +41,9 @@ double distance_sample_count(const TriMesh& A, const DistanceLayout& layout,
 /// kDistanceSamplesPerTriangle × triangles).
 double distance_sample_budget(long triangles);
 
-/// Throws ConfigError "measures.spacing: S would take [up to] N samples on <what> (M triangles),
-/// more than the budget of B (...)" when `samples` exceeds the budget of `triangles`.
+/// Throws OptionError, key "spacing", "S would take [up to] N samples on <what> (M triangles),
+/// more than the budget of B (...)" when `samples` exceeds the budget of `triangles` (the jobs
+/// name it "measures.spacing").
 void check_sample_budget(double samples, long triangles, double spacing, bool up_to,
                          const std::string& what);
 

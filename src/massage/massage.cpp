@@ -14,26 +14,25 @@
 namespace sm {
 namespace {
 
+// OptionError names the member; the caller that knows the config path adds it (with_option_path).
 void check_options(const MassageOptions& o, int n) {
-  auto bad = [](const std::string& key, const std::string& why) {
-    throw ConfigError("massage." + key + ": " + why);
-  };
-  check_ranges(o, "massage");  // the ranges of fields_of<MassageOptions>()
+  check_option_ranges(o);  // the ranges of fields_of<MassageOptions>()
   for (int v : o.pinned)
     if (v < 0 || v >= n)
-      bad("pinned", "vertex " + std::to_string(v) + " is out of range (the mesh has " +
-                        std::to_string(n) + " vertices)");
+      throw OptionError("pinned", "vertex " + std::to_string(v) +
+                                      " is out of range (the mesh has " + std::to_string(n) +
+                                      " vertices)");
   // The one check of weights given as numbers (C++, Python), in the config's words; a weights
   // file is checked as it is read, by line (io/vertex_weights.hpp).
   if (!o.vertex_weights.empty() && static_cast<int>(o.vertex_weights.size()) != n)
-    bad("vertex_weights", "expected " + std::to_string(n) +
-                              " weights (one per template vertex), got " +
-                              std::to_string(o.vertex_weights.size()));
+    throw OptionError("vertex_weights", "expected " + std::to_string(n) +
+                                            " weights (one per template vertex), got " +
+                                            std::to_string(o.vertex_weights.size()));
   const ValueSpec weight = closed(0, 1);  // NaN is outside it too
   for (size_t i = 0; i < o.vertex_weights.size(); ++i)
     if (!weight.contains(o.vertex_weights[i]))
-      throw number_error("massage.vertex_weights[" + std::to_string(i) + "]", weight,
-                         o.vertex_weights[i]);
+      throw OptionError("vertex_weights[" + std::to_string(i) + "]",
+                        number_reason(weight, o.vertex_weights[i]));
 }
 
 // A_w = W A + (I − W): row i of A scaled by w_i, 1 − w_i added to its diagonal. Rows with

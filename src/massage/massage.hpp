@@ -35,7 +35,8 @@ struct MassagerState;
 class Massager {
  public:
   /// Throws InputError (naming `name`) if T has out-of-range indices, non-finite coordinates or
-  /// no triangle; ConfigError for out-of-range options. Degenerate template corners fall back to
+  /// no triangle; OptionError naming the member ("pinned", "vertex_weights[3]") for out-of-range
+  /// options (callers that know the config path wrap it: with_option_path). Degenerate template corners fall back to
   /// uniform weights (weights().fallback_vertices counts them). Vertices in no triangle are
   /// pinned: they keep their start position and take no part in the distance energy.
   Massager(const TriMesh& templ, MassageOptions options, const char* name = "template");

@@ -165,7 +165,9 @@ class PyMassager {
       options.vertex_weights = read_vertex_weights(
           options.vertex_weights_file, static_cast<int>(templ.V.rows()), "template_vertices");
     py::gil_scoped_release unlocked;
-    engine_ = std::make_shared<const Massager>(templ, std::move(options), "template");
+    engine_ = with_option_path("massage", [&] {
+      return std::make_shared<const Massager>(templ, std::move(options), "template");
+    });
   }
 
   Result run(const py::object& vertices, const py::object& reference,

@@ -50,7 +50,9 @@ void bind_measures(py::module_& m) {
           const bool same = a.V.rows() == b.V.rows() && a.F.rows() == b.F.rows() && a.F == b.F;
           const Positions shear_template = same ? b.V : Positions();
           const MeasureReference reference(std::move(b), options, "mesh b");
-          out = measures_json(measure_mesh(a, reference, same ? &shear_template : nullptr));
+          out = measures_json(with_option_path("measures", [&] {
+            return measure_mesh(a, reference, same ? &shear_template : nullptr);
+          }));
         }
         return from_json(out, true);
       },

@@ -13,9 +13,14 @@ namespace sm::python {
 void bind_errors(py::module_& m) {
   // Translators are tried from the last registered one; the four classes are siblings, so the
   // order does not matter. Any other std::exception becomes a RuntimeError (pybind11's default).
-  py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError)
-      .attr("__doc__") = "A key or value of **massage, **measures or a config: unknown key, wrong "
-                         "type, out of range (the message names the key).";
+  auto config_error = py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
+  config_error.attr("__doc__") =
+      "A key or value of **massage, **measures or a config: unknown key, wrong type, out of range "
+      "(the message names the key).";
+  // The module names the path of every option it passes on (with_option_path); should one reach
+  // Python without it, it is still a ConfigError.
+  py::register_exception<OptionError>(m, "OptionError", config_error.ptr())
+      .attr("__doc__") = "A ConfigError naming an option's member without its config path.";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError)
       .attr("__doc__") = "A malformed mesh, array, frame or input file (the message names it).";
   py::register_exception<IoError>(m, "IoError", PyExc_OSError)

@@ -50,7 +50,8 @@ class PyTracker {
     weld_ = weld_by_position(V, F);
     fallback_ = V;
     py::gil_scoped_release unlocked;
-    tracker_ = std::make_unique<Tracker>(weld_.mesh, options, massage);
+    tracker_ = with_option_path(
+        "", [&] { return std::make_unique<Tracker>(weld_.mesh, options, massage); });
   }
 
   // One dict per frame: vertices (the template's, n×3), registered, status, recovery, fit and

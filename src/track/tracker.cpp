@@ -161,7 +161,11 @@ struct Tracker::State {
 
 Tracker::Tracker(TriMesh templ, TrackOptions options, MassageOptions massage)
     : s_(std::make_unique<State>()) {
-  check_ranges(options, "track.");
+  try {
+    check_option_ranges(options);
+  } catch (const OptionError& e) {
+    throw e.under("track");
+  }
   validate_mesh(templ, "template");
   if (templ.num_triangles() == 0) throw InputError("template: the mesh has no triangles");
   s_->templ = std::move(templ);
@@ -174,7 +178,11 @@ Tracker::Tracker(TriMesh templ, TrackOptions options, MassageOptions massage)
   s_->fit.emplace(s_->templ, s_->graph, s_->options, s_->h);
   if (options.refine_iterations > 0) {
     massage.iterations = options.refine_iterations;
-    s_->massager.emplace(s_->templ, massage, "template");
+    try {
+      s_->massager.emplace(s_->templ, massage, "template");
+    } catch (const OptionError& e) {
+      throw e.under("massage");
+    }
   }
   reset();
 }

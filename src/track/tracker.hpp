@@ -54,8 +54,8 @@ FitFigures measure_fit(const TriMesh& templ, const Positions& V, const RawFrame&
 class Tracker {
  public:
   /// `templ`: the template, welded (one vertex per surface point); its mean edge length is the
-  /// unit of every length option. Throws InputError for a template without triangles, ConfigError
-  /// for out-of-range options.
+  /// unit of every length option. Throws InputError for a template without triangles, OptionError
+  /// for out-of-range options (key "track.<member>" or "massage.<member>").
   Tracker(TriMesh templ, TrackOptions options, MassageOptions massage = {});
   ~Tracker();
   Tracker(Tracker&&) noexcept;

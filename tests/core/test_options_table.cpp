@@ -78,3 +78,24 @@ TEST_CASE("check_ranges names the first value out of its table's range") {
   e.inner.weight = NAN;
   CHECK_THROWS_AS(check_ranges(e, "example"), ConfigError);
 }
+
+TEST_CASE("check_option_ranges names the member and leaves the path to the caller") {
+  Example e;
+  CHECK_NOTHROW(check_option_ranges(e));
+  e.inner.weight = 1.0;
+  try {
+    check_option_ranges(e);
+    FAIL("no OptionError");
+  } catch (const OptionError& error) {
+    CHECK(error.key() == "inner.weight");
+    CHECK(error.reason() == "expected a number in (0, 1), got 1");
+    CHECK(error.under("outer").key() == "outer.inner.weight");
+  }
+  // The caller that knows the path: the config's words, as a ConfigError.
+  CHECK_THROWS_AS(with_option_path("job.example", [&] { check_option_ranges(e); }), ConfigError);
+  CHECK_THROWS_WITH(with_option_path("job.example", [&] { check_option_ranges(e); }),
+                    "job.example.inner.weight: expected a number in (0, 1), got 1");
+  CHECK_THROWS_WITH(with_option_path("", [&] { check_option_ranges(e); }),
+                    "inner.weight: expected a number in (0, 1), got 1");
+  CHECK(with_option_path("x", [] { return 7; }) == 7);
+}

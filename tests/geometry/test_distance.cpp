@@ -164,7 +164,7 @@ TEST_CASE("distance input errors", "[distance]") {
   const TriMesh a = make_grid(2, 2, 1.0, 1.0);
   DistanceOptions o;
   o.spacing = 0.0;
-  CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh(a), o), ConfigError);
+  CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh(a), o), OptionError);
   CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh()), InputError);
   TriMesh bad = a;
   bad.V(0, 0) = std::nan("");

@@ -141,7 +141,7 @@ TEST_CASE("adaptive distance: identical meshes, degenerate meshes, bad options",
   CHECK(std::isfinite(d.rms));
   CHECK(d.rms == Approx(0.5).epsilon(1e-12));
   DistanceOptions o = adaptive(0.25, 1.5);
-  CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh(a), o), ConfigError);
+  CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh(a), o), OptionError);
   o.refine_above = std::nan("");
-  CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh(a), o), ConfigError);
+  CHECK_THROWS_AS(one_sided_distance(a, TriangleBvh(a), o), OptionError);
 }

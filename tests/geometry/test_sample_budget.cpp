@@ -93,16 +93,16 @@ TEST_CASE("a spacing beyond the sample budget is a config error naming the key a
   const double edge = double(kMaxEdgeSegments - 1), face = lattice(kMaxFaceDivisions);
   const double uniform = 9 + 16 * edge + 8 * face;
   REQUIRE(uniform == 83836929.0);
-  CHECK(error_of<ConfigError>([&] { one_sided_distance(a, bvh, o); }) ==
-        "measures.spacing: 1e-09 would take 83836929 samples on the sampled mesh (8 triangles), "
+  CHECK(error_of<OptionError>([&] { one_sided_distance(a, bvh, o); }) ==
+        "spacing: 1e-09 would take 83836929 samples on the sampled mesh (8 triangles), "
         "more than the budget of 50000000 (50 million, or 100 per triangle); choose a larger "
         "spacing");
   // Adaptive: the vertices and centroids, then both levels on every triangle at most.
   o.adaptive = true;
   const double adaptive = 9 + 8 + 2 * 8 * (3 * edge + face);
   REQUIRE(adaptive == 184451057.0);
-  CHECK(error_of<ConfigError>([&] { one_sided_distance(a, bvh, o); }) ==
-        "measures.spacing: 1e-09 would take up to 184451057 samples on the sampled mesh (8 "
+  CHECK(error_of<OptionError>([&] { one_sided_distance(a, bvh, o); }) ==
+        "spacing: 1e-09 would take up to 184451057 samples on the sampled mesh (8 "
         "triangles), more than the budget of 50000000 (50 million, or 100 per triangle); choose "
         "a larger spacing");
   // The budget grows with the mesh beyond 500,000 triangles.
@@ -130,7 +130,7 @@ TEST_CASE("the budget refuses exactly the spacings whose count exceeds it", "[di
       bool threw = false;
       try {
         check_distance_samples(a, layout, o, "the sampled mesh");
-      } catch (const ConfigError&) {
+      } catch (const OptionError&) {
         threw = true;
       }
       CHECK(threw == over);

@@ -61,8 +61,13 @@ def test_tracker_follows_an_untracked_sequence():
 
 def test_tracker_refuses_bad_options_and_frames():
     u, v, vertices, triangles = triangulate(0, 1)
-    with pytest.raises(seqmassage.ConfigError, match="track.node_spacing"):
+    with pytest.raises(seqmassage.ConfigError, match=r"^track\.node_spacing: "):
         seqmassage.Tracker(vertices, triangles, node_spacing=-1)
+    # Checked by the engine (the template's size), named with the config's path.
+    n = len(vertices)
+    with pytest.raises(seqmassage.ConfigError,
+                       match=r"^massage\.pinned: vertex %d is out of range" % n):
+        seqmassage.Tracker(vertices, triangles, refine_iterations=2, massage={"pinned": [n]})
     tracker = seqmassage.Tracker(vertices, triangles)
     with pytest.raises(seqmassage.InputError, match=r"frames\[0\]"):
         tracker.track([(vertices, triangles + 10 ** 6)])

@@ -55,7 +55,8 @@ MeasureFilesResult measure_files(const MeasureFilesRequest& r) {
   arena.execute([&] {
     const MeasureReference ref(reference, r.options, r.reference.string().c_str());
     result.reference_quality = ref.radius_ratio();
-    result.measures = measure_mesh(mesh, ref, templ ? &templ->V : nullptr);
+    result.measures = with_option_path(
+        "measures", [&] { return measure_mesh(mesh, ref, templ ? &templ->V : nullptr); });
   });
 
   const std::string shown_reference = r.reference.string() + " (" + counts(reference) + ")";

@@ -160,8 +160,9 @@ MeshJobPlan plan_mesh_job(const MeshJobOptions& config) {
   if (!c.massage.vertex_weights_file.empty())
     plan.config.massage.vertex_weights = read_vertex_weights(
         c.massage.vertex_weights_file, plan.templ.num_vertices(), plan.template_name);
-  plan.massager =
-      std::make_shared<const Massager>(plan.templ, c.massage, plan.template_name.c_str());
+  plan.massager = with_option_path("massage", [&] {
+    return std::make_shared<const Massager>(plan.templ, c.massage, plan.template_name.c_str());
+  });
   std::vector<unsigned char> pinned(plan.mesh.num_vertices(), 0);
   for (int v : c.massage.pinned) pinned[v] = 1;
   if (c.massage.pin_boundary)
@@ -234,7 +235,11 @@ MeshJobResult run_mesh_job(const MeshJobPlan& plan) {
   arena.execute([&] {
     const MeasureReference measure_ref(plan.reference, c.measures, plan.reference_name.c_str());
     const Positions* shear_template = &plan.templ.V;
-    result.before = measure_mesh(plan.mesh, measure_ref, shear_template);
+    const auto measure = [&](const TriMesh& mesh) {
+      return with_option_path("measures",
+                              [&] { return measure_mesh(mesh, measure_ref, shear_template); });
+    };
+    result.before = measure(plan.mesh);
     if (c.output.per_triangle_csv) triangles_before = measure_triangles(plan.mesh, shear_template);
 
     // N shares M's topology when it is M as loaded.
@@ -247,7 +252,7 @@ MeshJobResult run_mesh_job(const MeshJobPlan& plan) {
     result.V = result.massage.V;
     if (!result.massage.ok) return;
     const TriMesh output{result.V, plan.mesh.F};
-    result.after = measure_mesh(output, measure_ref, shear_template);
+    result.after = measure(output);
     if (c.output.per_triangle_csv) triangles_after = measure_triangles(output, shear_template);
   });
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 
+#include "core/errors.hpp"
 #include "pipeline/sequence/fold_check.hpp"
 
 namespace sm {
@@ -70,7 +71,8 @@ FoldRepair repair_folds(const TriMesh& templ, const MassageOptions& massage,
     repair.weighted = static_cast<int>(
         std::count_if(options.vertex_weights.begin(), options.vertex_weights.end(),
                       [](double w) { return w > 0.0 && w < 1.0; }));
-    const Massager massager(templ, options);
+    const Massager massager =
+        with_option_path("massage", [&] { return Massager(templ, options); });
     MassageResult result = massager.run(input, reference);
     repair.rounds = round;
     if (!result.ok) {

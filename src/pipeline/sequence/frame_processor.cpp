@@ -29,8 +29,11 @@ FrameProcessor::FrameProcessor(TriMesh templ, const SequenceJobOptions& config,
       samples_(config.massage.samples),
       checks_(config.checks),
       massage_(config.massage),
-      massager_(std::make_shared<const Massager>(templ_, config.massage,
-                                                 template_source_.c_str())),
+      massager_(with_option_path("massage",
+                                 [&] {
+                                   return std::make_shared<const Massager>(
+                                       templ_, config.massage, template_source_.c_str());
+                                 })),
       meter_(templ_.F, templ_.num_vertices(), massager_->shared_topology(), config.measures) {}
 
 std::string FrameProcessor::connectivity_mismatch(const std::string& who,
@@ -171,8 +174,9 @@ void FrameProcessor::check(ProcessedFrame& f) const {
 void FrameProcessor::measure(ProcessedFrame& f) const {
   FrameSummary& s = f.summary;
   if (!f.unchanged) {
-    const FrameDistances d =
-        meter_.measure(f.input.mesh, f.reference->bvh(), f.reference->planes(), f.V);
+    const FrameDistances d = with_option_path("measures", [&] {
+      return meter_.measure(f.input.mesh, f.reference->bvh(), f.reference->planes(), f.V);
+    });
     s.out_to_in = d.moved_to_original;
     s.in_to_out = d.original_to_moved;
   }

@@ -148,7 +148,9 @@ SequencePlan plan_sequence_job(const SequenceJobOptions& config) {
                                                           plan.template_frame);
   // Frames have the template's triangles (the Massager has validated them): a spacing beyond the
   // sampling budget on the template is refused before any frame is read.
-  check_distance_samples(plan.templ, c.measures, "the template, " + plan.template_source);
+  with_option_path("measures", [&] {
+    check_distance_samples(plan.templ, c.measures, "the template, " + plan.template_source);
+  });
   const Massager& massager = plan.processor->massager();
   plan.config_hash = frame_config_hash(c);
   plan.template_hash = template_hash(plan.templ);

@@ -149,7 +149,10 @@ TrackPlan plan_track_job(const TrackJobOptions& config) {
                             " vertices split along seams welded by position for tracking");
   {  // the options and the template, checked once (the run builds its own)
     tbb::task_arena arena(plan.threads);
-    arena.execute([&] { Tracker check(plan.weld.mesh, c.track, output_job_options(c).massage); });
+    arena.execute([&] {
+      with_option_path(
+          "", [&] { (void)Tracker(plan.weld.mesh, c.track, output_job_options(c).massage); });
+    });
   }
 
   SequencePlan& out = plan.outputs;
@@ -230,7 +233,8 @@ class TrackRun {
 
   void track_all() {
     const TrackJobOptions& c = plan_.config;
-    Tracker tracker(plan_.weld.mesh, c.track, plan_.outputs.config.massage);
+    Tracker tracker = with_option_path(
+        "", [&] { return Tracker(plan_.weld.mesh, c.track, plan_.outputs.config.massage); });
     const int total = int(plan_.order.size());
     for (size_t k = 0; k < plan_.order.size(); ++k) {
       if (hooks_.cancel && hooks_.cancel->load()) {
