@@ -1,6 +1,7 @@
 #include "massage/linear_solver.hpp"
 
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -191,7 +192,16 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& M, const Positions& R, P
 
 struct DirectSolver::Impl {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  bool analysed = false;
+  // The pattern the ordering was computed for (column starts, row indices): an O(nnz) comparison
+  // per call, against a factorization that costs far more.
+  std::vector<int> outer, inner;
+
+  bool same_pattern(const Eigen::SparseMatrix<double>& K) const {
+    const int cols = static_cast<int>(K.cols()), nnz = static_cast<int>(K.nonZeros());
+    return static_cast<int>(outer.size()) == cols + 1 && static_cast<int>(inner.size()) == nnz &&
+           std::equal(outer.begin(), outer.end(), K.outerIndexPtr()) &&
+           std::equal(inner.begin(), inner.end(), K.innerIndexPtr());
+  }
 };
 
 DirectSolver::DirectSolver() : impl_(std::make_unique<Impl>()) {}
@@ -199,10 +209,12 @@ DirectSolver::~DirectSolver() = default;
 
 SolveStats DirectSolver::solve(const SparseMatrixR& K, const Positions& R, Positions& X) {
   SolveStats st;
-  const Eigen::SparseMatrix<double> Kc = K;
-  if (!impl_->analysed) {
+  Eigen::SparseMatrix<double> Kc = K;
+  Kc.makeCompressed();
+  if (!impl_->same_pattern(Kc)) {
     impl_->lu.analyzePattern(Kc);
-    impl_->analysed = true;
+    impl_->outer.assign(Kc.outerIndexPtr(), Kc.outerIndexPtr() + Kc.cols() + 1);
+    impl_->inner.assign(Kc.innerIndexPtr(), Kc.innerIndexPtr() + Kc.nonZeros());
   }
   impl_->lu.factorize(Kc);
   if (impl_->lu.info() != Eigen::Success) {

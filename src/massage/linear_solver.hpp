@@ -78,7 +78,8 @@ SolveStats bicgstab(const SparseMatrixR& K, const Ilu0& preconditioner, const Po
                     Positions& X, double tolerance, int max_iterations);
 
 /// Sparse LU of K (Eigen's SparseLU, COLAMD ordering). The ordering is computed on the first
-/// call and reused while the pattern is the same; each call refactors numerically.
+/// call and reused while K's sparsity pattern is the same (compared on every call; another
+/// pattern is analysed afresh); each call refactors numerically.
 class DirectSolver {
  public:
   DirectSolver();

@@ -136,7 +136,7 @@ MassageRun::Step MassageRun::step() {
 bool MassageRun::assemble(IterationStats& it) {
   const auto t0 = Clock::now();
   const int n = s_.pattern.size();
-  assemble_distance_system(s_.pattern, s_.F, v_hat_, alpha_, reference_.samples(), w_hat_, beta_,
+  assemble_distance_system(s_.pattern, s_.F, {v_hat_, alpha_, reference_.samples(), w_hat_, beta_},
                            B_values_, c_);
   double b_norm2 = 0.0;
   for (double b : B_values_) b_norm2 += b * b;

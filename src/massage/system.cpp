@@ -36,11 +36,13 @@ SystemPattern::SystemPattern(const SparseMatrixR& A, const Triangles& F) : struc
 }
 
 void assemble_distance_system(const SystemPattern& pattern, const Triangles& F,
-                              const std::vector<SurfacePoint>& on_reference,
-                              const Eigen::VectorXd& alpha, const Positions& samples,
-                              const std::vector<SurfacePoint>& on_mesh,
-                              const Eigen::VectorXd& beta, std::vector<double>& B_values,
+                              const Correspondences& pairs, std::vector<double>& B_values,
                               Positions& c) {
+  const std::vector<SurfacePoint>& on_reference = pairs.v_hat;
+  const std::vector<SurfacePoint>& on_mesh = pairs.w_hat;
+  const Eigen::VectorXd& alpha = pairs.alpha;
+  const Eigen::VectorXd& beta = pairs.beta;
+  const Positions& samples = pairs.samples;
   const int n = pattern.size();
   B_values.assign(pattern.shape_matrix().nonZeros(), 0.0);
   c.setZero(n, 3);

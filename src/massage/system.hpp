@@ -40,15 +40,21 @@ class SystemPattern {
   IluSchedule ilu_;
 };
 
+/// The correspondences of the distance energy (eq. 3) as one iteration holds them.
+struct Correspondences {
+  const std::vector<SurfacePoint>& v_hat;  ///< v̂_i: the point of N closest to vertex i (n)
+  const Eigen::VectorXd& alpha;            ///< α_i, its weight (n)
+  const Positions& samples;                ///< w_j: the samples on N (s×3)
+  const std::vector<SurfacePoint>& w_hat;  ///< ŵ_j: the point of M closest to w_j (s)
+  const Eigen::VectorXd& beta;             ///< β_j, its weight (s)
+};
+
 /// The distance energy's normal equations B v = c (eq. 4) on the pattern:
 ///   B = Σ_i α_i e_i e_iᵀ + Σ_j β_j b_j b_jᵀ,   c = Σ_i α_i v̂_i + Σ_j β_j b_j w_j
-/// where v̂_i = on_reference[i].point and b_j holds on_mesh[j]'s barycentric coordinates scattered
-/// onto the vertices of its triangle. `B_values` gets nnz entries, `c` n×3.
+/// where b_j holds ŵ_j's barycentric coordinates scattered onto the vertices of its triangle of
+/// F (M's triangles). `B_values` gets nnz entries, `c` n×3 (buffers reused from call to call).
 void assemble_distance_system(const SystemPattern& pattern, const Triangles& F,
-                              const std::vector<SurfacePoint>& on_reference,
-                              const Eigen::VectorXd& alpha, const Positions& samples,
-                              const std::vector<SurfacePoint>& on_mesh,
-                              const Eigen::VectorXd& beta, std::vector<double>& B_values,
+                              const Correspondences& pairs, std::vector<double>& B_values,
                               Positions& c);
 
 }  // namespace sm

@@ -56,6 +56,30 @@ TEST_CASE("BiCGSTAB with ILU(0) agrees with sparse LU", "[solver]") {
     }
 }
 
+TEST_CASE("one DirectSolver solves systems of different patterns and sizes in turn", "[solver]") {
+  // The ordering is reused only for the pattern it was computed on: each system is checked by
+  // its residual and against a fresh solver's answer.
+  const SparseMatrixR a = massage_like(make_icosphere(2, 1.0), 0.4, 1.0, 11);
+  const SparseMatrixR b = massage_like(make_torus(12, 8, 2.0, 0.5), 0.3, 1.0, 12);
+  const SparseMatrixR c = massage_like(make_grid(9, 9, 1.0, 1.0), 0.4, 10.0, 13);
+  // Same size as `a`, another pattern: `a` without some of its off-diagonal pairs.
+  SparseMatrixR a2 = a;
+  a2.prune([](int i, int j, double) { return i == j || (i + j) % 7 != 0; });
+  REQUIRE(a2.rows() == a.rows());
+  REQUIRE(a2.nonZeros() < a.nonZeros());
+  DirectSolver shared;
+  for (const SparseMatrixR* K : std::vector<const SparseMatrixR*>{&a, &b, &a, &a2, &c, &a}) {
+    const Positions R = Positions::Random(K->rows(), 3);
+    Positions X, Y;
+    const SolveStats s = shared.solve(*K, R, X);
+    REQUIRE(s.ok);
+    CHECK(s.residual < 1e-10);
+    DirectSolver fresh;
+    REQUIRE(fresh.solve(*K, R, Y).ok);
+    CHECK((X - Y).cwiseAbs().maxCoeff() <= 1e-9 * Y.cwiseAbs().maxCoeff());
+  }
+}
+
 TEST_CASE("ILU(0) is the exact LU when the pattern has no fill", "[solver]") {
   // A tridiagonal matrix: its LU factors have no fill-in, so one preconditioner step solves it.
   const int n = 50;

@@ -51,7 +51,7 @@ TEST_CASE("B and c are the normal equations of the distance energy", "[system]")
 
     std::vector<double> B_values;
     Positions c;
-    assemble_distance_system(pattern, m.F, v_hat, alpha, W, w_hat, beta, B_values, c);
+    assemble_distance_system(pattern, m.F, {v_hat, alpha, W, w_hat, beta}, B_values, c);
     SparseMatrixR B = pattern.shape_matrix();
     std::copy(B_values.begin(), B_values.end(), B.valuePtr());
 
