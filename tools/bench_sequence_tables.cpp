@@ -82,7 +82,7 @@ std::vector<Variant> distance_variants() {
 }
 
 // Both directions between an optimized frame and its input, as the sequence job measures them
-// (pipeline/sequence/sequence_job.cpp, process_frame): the output's BVH refit from the input's and the
+// (pipeline/run/sequence_job.cpp, process_frame): the output's BVH refit from the input's and the
 // output's projection frames are part of the cost.
 struct FramePair {
   DistanceStats out_to_in, in_to_out;

@@ -34,7 +34,7 @@
 #include "io/mesh_file.hpp"
 #include "massage/massage.hpp"
 #include "core/timing.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "pipeline/sequence/synthetic.hpp"
 
 using namespace sm;

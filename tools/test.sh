@@ -40,6 +40,13 @@ else
     "headers or pybind11: bash tools/setup.sh installs python3-dev and pybind11-dev)"
 fi
 
+# The layout: no include points back up inside a folder or between folders (docs/development.md).
+/usr/bin/python3 tools/include_graph.py --check >/dev/null || {
+  /usr/bin/python3 tools/include_graph.py --check
+  exit 1
+}
+stage "include graph"
+
 # Installed as users install it: cmake --install into a temporary prefix, the .deb (cpack; installed
 # and removed only as root with CI=true), pip install . into a venv; 3: skipped, the script says why.
 for test in install deb pip; do

@@ -28,9 +28,11 @@
 #include "pipeline/mesh_jobs/mesh_job.hpp"
 #include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "pipeline/report/report.hpp"
+#include "pipeline/run/sequence_report.hpp"
+#include "pipeline/mesh_jobs/mesh_job_text.hpp"
 #include "pipeline/report/run_text.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/run/sequence_job.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/track/track_job.hpp"
 

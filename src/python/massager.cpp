@@ -86,7 +86,7 @@ bool weights_as_numbers(const py::handle& value) {
          !py::hasattr(value, "__fspath__");
 }
 
-// One frame as the sequence job runs it (pipeline/sequence/sequence_job.cpp): the frame is the reference,
+// One frame as the sequence job runs it (pipeline/run/sequence_job.cpp): the frame is the reference,
 // with the template's topology and a refit of its BVH; the start is the reference's copy of the
 // positions. Massager.run(vertices) and Massager.run_many use this, so they agree bit for bit.
 MassageResult run_frame(const Massager& engine, Positions V, const IterationObserver& observer) {

@@ -15,7 +15,7 @@
 #include "pipeline/outputs/checker.hpp"
 #include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/sequence/iteration_log.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "pipeline/outputs/shear_ply.hpp"
 #include "pipeline/sequence/synthetic.hpp"
 #include "support/gltf_models.hpp"

@@ -12,7 +12,7 @@
 #include "core/errors.hpp"
 #include "mesh/topology.hpp"
 #include "pipeline/report/report.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "support/error_of.hpp"
 #include "support/gltf_models.hpp"
 #include "support/temp_dir.hpp"

@@ -10,7 +10,7 @@
 #include "io/obj.hpp"
 #include "pipeline/report/html_page.hpp"
 #include "pipeline/report/html_sequence.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "support/html_player.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

@@ -11,7 +11,7 @@
 #include "pipeline/cluster/frame_record.hpp"
 #include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/report/report.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"
 

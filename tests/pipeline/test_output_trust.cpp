@@ -11,7 +11,7 @@
 #include "core/errors.hpp"
 #include "pipeline/cluster/merge.hpp"
 #include "pipeline/cluster/output_lock.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "support/error_of.hpp"
 #include "support/gltf_models.hpp"
 #include "support/sequence_fixture.hpp"

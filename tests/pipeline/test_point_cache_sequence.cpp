@@ -14,7 +14,7 @@
 #include "io/point_cache.hpp"
 #include "core/errors.hpp"
 #include "pipeline/cluster/merge.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "support/error_of.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

@@ -7,7 +7,7 @@
 #include "io/obj.hpp"
 #include "core/errors.hpp"
 #include "pipeline/report/report.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "pipeline/sequence/synthetic.hpp"
 #include "support/error_of.hpp"
 #include "support/sequence_fixture.hpp"

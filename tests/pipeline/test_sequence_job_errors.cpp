@@ -5,7 +5,7 @@
 
 #include "io/atomic_file.hpp"
 #include "core/errors.hpp"
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 #include "pipeline/sequence/synthetic.hpp"
 #include "support/sequence_fixture.hpp"
 #include "support/temp_dir.hpp"

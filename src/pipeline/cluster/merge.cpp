@@ -13,7 +13,7 @@
 #include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/cluster/frame_record.hpp"
 #include "pipeline/report/report.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "pipeline/sequence/frame_sources.hpp"
 
 namespace sm {

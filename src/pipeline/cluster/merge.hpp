@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/sequence/frame_summary.hpp"
 
 namespace sm {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "io/atomic_file.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 
 namespace sm {
 

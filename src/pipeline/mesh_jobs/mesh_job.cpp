@@ -16,7 +16,7 @@
 #include "mesh/mesh_check.hpp"
 #include "core/timing.hpp"
 #include "pipeline/sequence/input_clash.hpp"
-#include "pipeline/report/mesh_html.hpp"
+#include "pipeline/mesh_jobs/mesh_html.hpp"
 #include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "pipeline/cluster/output_lock.hpp"
 #include "pipeline/report/run_text.hpp"

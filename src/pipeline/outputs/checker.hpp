@@ -9,47 +9,9 @@
 #include "io/png.hpp"
 #include "core/frame_selection.hpp"
 #include "mesh/mesh.hpp"
-#include "core/options_table.hpp"
+#include "pipeline/sequence/output_options.hpp"
 
 namespace sm {
-
-/// Where the checker's texture coordinates come from.
-enum class CheckerUvSource {
-  /// "auto": the template frame's own texture coordinates when every corner of it has one (OBJ
-  /// `vt`, glTF TEXCOORD_0), else "charts".
-  Auto,
-  /// "charts": the template's triangles grouped by the dominant axis of their normal (±x, ±y,
-  /// ±z), each group projected onto the plane of the other two axes.
-  Charts,
-};
-inline constexpr EnumName<CheckerUvSource> kCheckerUvSourceNames[] = {
-    {"auto", CheckerUvSource::Auto}, {"charts", CheckerUvSource::Charts}};
-
-/// "output.checker": checker/before/<frame>.obj (the input frame) and checker/after/<frame>.obj
-/// (the corrected frame), each folder with checker.mtl and checker.png; texture coordinates from
-/// the template, identical for every frame, so a texture that swims on the input stays put.
-struct CheckerOutputOptions {
-  bool enabled = false;
-  FrameSelection frames;
-  CheckerUvSource uv = CheckerUvSource::Auto;
-  int cells = 8;           ///< squares per side of the texture
-  double cell_size = 4.0;  ///< with charts, a square's side in mean edge lengths of the template
-};
-
-template <>
-inline const Fields<CheckerOutputOptions>& fields_of<CheckerOutputOptions>() {
-  using O = CheckerOutputOptions;
-  static const Fields<O> fields = {
-      field<&O::frames>("frames", any_value(), "frames written"),
-      field<&O::uv>("uv", choice(kCheckerUvSourceNames),
-                    "`\"auto\"`: the template's own texture coordinates when every corner has "
-                    "one, else charts; `\"charts\"`: always axis-aligned projection charts"),
-      field<&O::cells>("cells", closed(1, 64), "squares per side of the texture"),
-      field<&O::cell_size>("cell_size", left_open(0, 1e6),
-                           "with charts: a square's side, in mean edge lengths of the template"),
-  };
-  return fields;
-}
 
 /// Texture coordinates of a mesh's triangle corners.
 struct CornerUv {

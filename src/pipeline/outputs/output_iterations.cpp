@@ -2,7 +2,7 @@
 
 #include "io/atomic_file.hpp"
 #include "pipeline/sequence/iteration_log.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 #include "io/point_cache.hpp"
 #include "core/errors.hpp"
 #include "pipeline/outputs/output_staged.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "pipeline/sequence/frame_sources.hpp"
 
 namespace sm {

@@ -10,48 +10,9 @@
 
 #include "core/frame_selection.hpp"
 #include "mesh/mesh.hpp"
-#include "core/options_table.hpp"
+#include "pipeline/sequence/output_options.hpp"
 
 namespace sm {
-
-/// How shear colours are attached to the PLY.
-enum class ShearColorMode {
-  /// "faces": every triangle gets three vertices of its own carrying its colour, and the same
-  /// colour as a face property: flat colours in every viewer (Blender reads vertex colours only).
-  Faces,
-  /// "vertices": the mesh's own vertices (connectivity kept), each coloured by the mean of its
-  /// triangles' values on the scale; face colours as well (MeshLab shows either).
-  Vertices,
-};
-inline constexpr EnumName<ShearColorMode> kShearColorModeNames[] = {
-    {"faces", ShearColorMode::Faces}, {"vertices", ShearColorMode::Vertices}};
-
-/// "output.colored": colored/before/<frame>.ply and colored/after/<frame>.ply, binary PLY whose
-/// colours map the shear distortion (eq. 8) of each triangle against the template to a blue-red
-/// scale (see shear_color).
-struct ColoredOutputOptions {
-  bool enabled = false;
-  FrameSelection frames;
-  double max = 0.1;  ///< the shear shown red
-  ShearColorMode colors = ShearColorMode::Faces;
-};
-
-template <>
-inline const Fields<ColoredOutputOptions>& fields_of<ColoredOutputOptions>() {
-  using O = ColoredOutputOptions;
-  static const Fields<O> fields = {
-      field<&O::frames>("frames", any_value(),
-                        "frames written, by index in the full list of frames; listed frames the "
-                        "run does not process get a warning"),
-      field<&O::max>("max", left_open(0, 1e6),
-                     "the shear shown red, the same for every frame, before and after"),
-      field<&O::colors>("colors", choice(kShearColorModeNames),
-                        "`\"faces\"`: three vertices of its own per triangle and a face colour "
-                        "(flat in every viewer); `\"vertices\"`: the mesh's own vertices, each "
-                        "with the mean colour of its triangles"),
-  };
-  return fields;
-}
 
 /// The colour of t in [0, 1] on the blue-red scale: blue (0, 0, 255) at 0, cyan (0, 255, 255)
 /// at 0.25, green (0, 255, 0) at 0.5, yellow (255, 255, 0) at 0.75 and red (255, 0, 0) at 1,

@@ -31,7 +31,8 @@ void append_frame_warnings(const FrameSummary& frame, OnFailure on_failure,
 /// Program and library versions: seqmassage, Eigen, oneTBB, nlohmann-json, compiler.
 nlohmann::json version_info();
 
-/// The parts of report.json that the plan decides, the same in every shard of a job.
+/// The parts of report.json that the plan decides, the same in every shard of a job (a planned
+/// run's: run/sequence_report.hpp).
 struct ReportHeader {
   nlohmann::json versions;  ///< version_info()
   /// The job's resolved config (to_json) with the run controls reset: "shard" {0, 1} and
@@ -46,9 +47,6 @@ struct ReportHeader {
   std::string config_hash;            ///< frame_config_hash
   std::vector<std::string> warnings;  ///< the plan's (template, range)
 };
-
-/// The header of a plan's report.
-ReportHeader report_header(const SequencePlan& plan);
 
 /// The header of a shard's report (report.shard-I-of-N.json), which keeps the plan's warnings
 /// in "shard"."plan_warnings". Throws InputError naming the missing key.
@@ -68,15 +66,5 @@ struct ShearMeans {
   double after = 0.0;
 };
 ShearMeans mean_shear(const std::vector<FrameSummary>& frames);
-
-/// What a run writes, relative to output.dir, for the command line's results line: every
-/// output's folders (FrameOutput::results), records/, the outputs' whole-run tables, summary.csv
-/// and report.json (the last two shard-named for a shard).
-std::vector<std::string> run_output_names(const SequencePlan& plan);
-
-/// The report of a run: make_report of the plan's header and the result's frames, with the run's
-/// times (config.output.timings), and for a shard its "shard" section (index, count, its frames,
-/// whether it is complete, the plan's warnings), from which `seqmassage merge` works.
-nlohmann::json make_report(const SequencePlan& plan, const SequenceResult& result);
 
 }  // namespace sm

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pipeline/report/report.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "massage/massage_keys.hpp"
 
 namespace sm {
@@ -84,19 +84,6 @@ std::string run_end_text(const SequenceResult& result) {
   return std::to_string(result.frames.size()) + " frames in " + fixed_text(result.seconds, 1) +
          " s (" + std::to_string(result.failed) + " failed), mean shear " +
          fixed_text(shear.before, 4) + " -> " + fixed_text(shear.after, 4);
-}
-
-std::string mesh_job_start_text(const MeshJobPlan& plan) {
-  return job_name(plan.config.job) + " " + plan.mesh_name + " (" +
-         std::to_string(plan.mesh.num_vertices()) + " vertices), " +
-         std::to_string(plan.config.massage.iterations) + " iterations, " +
-         std::to_string(plan.threads) + " threads";
-}
-
-std::string mesh_job_end_text(const MeshJobResult& result) {
-  return std::to_string(result.massage.iterations.size()) + " iterations in " +
-         fixed_text(result.seconds_massage, 2) + " s (whole run " + fixed_text(result.seconds, 2) +
-         " s)";
 }
 
 std::string massage_text(const MassageOptions& m) {

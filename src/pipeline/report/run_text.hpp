@@ -3,7 +3,7 @@
 /// start, every frame, a failed frame, a resume, its end, and the single-mesh jobs' start and end.
 #include <string>
 
-#include "pipeline/mesh_jobs/mesh_job_types.hpp"
+#include "massage/massage_options.hpp"
 #include "pipeline/sequence/sequence_types.hpp"
 
 namespace sm {
@@ -36,11 +36,5 @@ std::string run_end_text(const SequenceResult& result);
 /// "mean_value weights, 15 iterations, mu auto, samples vertices, solver iterative" (the dry
 /// runs' "massage:" line).
 std::string massage_text(const MassageOptions& options);
-
-/// "remesh a.off (1000 vertices), 15 iterations, 4 threads".
-std::string mesh_job_start_text(const MeshJobPlan& plan);
-
-/// "15 iterations in 1.20 s (whole run 2.00 s)".
-std::string mesh_job_end_text(const MeshJobResult& result);
 
 }  // namespace sm

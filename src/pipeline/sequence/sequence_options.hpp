@@ -16,13 +16,12 @@
 #include "massage/massage_keys.hpp"
 #include "core/frame_selection.hpp"
 #include "core/options_table.hpp"
-#include "pipeline/outputs/checker.hpp"
 #include "pipeline/sequence/fold_check.hpp"
+#include "pipeline/sequence/output_options.hpp"
 #include "pipeline/sequence/input_kinds.hpp"
 #include "pipeline/sequence/iteration_log.hpp"
 #include "pipeline/sequence/job_kind.hpp"
-#include "pipeline/cluster/shard.hpp"
-#include "pipeline/outputs/shear_ply.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "pipeline/sequence/synthetic.hpp"
 
 namespace sm {

@@ -16,7 +16,7 @@
 #include "pipeline/sequence/input_clash.hpp"
 #include "pipeline/cluster/output_lock.hpp"
 #include "pipeline/report/report.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

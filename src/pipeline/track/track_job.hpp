@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "io/gltf/gltf_weld.hpp"
-#include "pipeline/sequence/sequence_plan.hpp"
+#include "pipeline/run/sequence_plan.hpp"
 #include "pipeline/track/track_frames.hpp"
 #include "pipeline/track/track_job_options.hpp"
 #include "track/tracker.hpp"

@@ -1,4 +1,4 @@
-#include "pipeline/sequence/frame_processor.hpp"
+#include "pipeline/run/frame_processor.hpp"
 
 #include "geometry/ground_truth.hpp"
 #include "io/csv.hpp"

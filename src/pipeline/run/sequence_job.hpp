@@ -6,7 +6,7 @@
 /// (frame_output.hpp).
 #include <string>
 
-#include "pipeline/sequence/sequence_plan.hpp"  // plan_sequence_job, then run_sequence_job
+#include "pipeline/run/sequence_plan.hpp"  // plan_sequence_job, then run_sequence_job
 #include "pipeline/sequence/sequence_types.hpp"
 
 namespace sm {

@@ -1,4 +1,4 @@
-#include "pipeline/sequence/sequence_plan.hpp"
+#include "pipeline/run/sequence_plan.hpp"
 
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
@@ -15,12 +15,12 @@
 #include "core/errors.hpp"
 #include "mesh/mesh_check.hpp"
 #include "pipeline/outputs/frame_output.hpp"
-#include "pipeline/sequence/frame_processor.hpp"
+#include "pipeline/run/frame_processor.hpp"
 #include "pipeline/cluster/frame_record.hpp"
 #include "pipeline/sequence/input_clash.hpp"
 #include "pipeline/report/report.hpp"
 #include "pipeline/report/run_text.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "pipeline/sequence/frame_sources.hpp"
 
 // plan_sequence_job and describe_plan (sequence_plan.hpp): everything checked before a run.

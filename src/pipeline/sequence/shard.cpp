@@ -1,4 +1,4 @@
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/sequence/shard.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "pipeline/sequence/sequence_job.hpp"
+#include "pipeline/run/sequence_job.hpp"
 
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
@@ -10,11 +10,12 @@
 #include "io/sha256.hpp"
 #include "core/timing.hpp"
 #include "pipeline/outputs/frame_output.hpp"
-#include "pipeline/sequence/frame_processor.hpp"
+#include "pipeline/run/frame_processor.hpp"
 #include "pipeline/cluster/output_lock.hpp"
 #include "pipeline/cluster/frame_record.hpp"
 #include "pipeline/report/report.hpp"
-#include "pipeline/cluster/shard.hpp"
+#include "pipeline/run/sequence_report.hpp"
+#include "pipeline/sequence/shard.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;

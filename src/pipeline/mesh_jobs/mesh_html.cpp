@@ -1,4 +1,4 @@
-#include "pipeline/report/mesh_html.hpp"
+#include "pipeline/mesh_jobs/mesh_html.hpp"
 
 #include "geometry/quality.hpp"
 #include "geometry/shear.hpp"
