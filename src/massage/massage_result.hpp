@@ -35,7 +35,10 @@ struct MassageResult {
   bool ok = true;              ///< false: numerical failure, see `failure`; V is then the start
   std::string failure;         ///< why the run failed (solver breakdown, NaN, ...)
   bool stopped_early = false;  ///< the movement tolerance was met before the last iteration
-  int folded_triangles = 0;    ///< triangles whose normal opposes N's at their centroid
+  /// Triangles of the result whose normal opposes N's where their corners land: the sum of the
+  /// normals of the three triangles of N that hold the corners' closest points v̂ (not N's normal
+  /// at the triangle's centroid).
+  int folded_triangles = 0;
   /// With shape_target "template": vertices whose normal is undefined in T or in the start (no
   /// area around them), which keep the paper's target δ_i = 0.
   int target_fallback_vertices = 0;
