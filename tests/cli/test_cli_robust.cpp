@@ -193,7 +193,7 @@ TEST_CASE("failed frames exit with code 5 and are reported; with \"skip\" they a
     if (v == 40) x += 5.0;
   });
   // (Coordinates beyond 1e18 are an input error of the reader now, not an optimizer failure:
-  // tests/cli/test_cli_trust.cpp; the optimizer's failure is tests/pipeline/test_numerical_safety.)
+  // tests/cli/test_cli_trust.cpp; the optimizer's failure is tests/pipeline/run/test_numerical_safety.)
   write_text(dir / "job.json",
              job(R"(, "checks": {"max_folded_triangles": 0, "repair_folds": false})"));
   test::CliRun r = test::run_cli(dir.path(), "job.json");
