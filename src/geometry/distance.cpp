@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "geometry/distance_keys.hpp"
 #include "geometry/sample_budget.hpp"
 #include "geometry/triangle_grid.hpp"
 #include "core/errors.hpp"

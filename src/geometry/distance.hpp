@@ -18,7 +18,22 @@ namespace sm {
 /// and the BVH the others. `planes_b`, if given, are B's projection frames (e.g.
 /// Reference::planes()), otherwise they are computed; with `topology_b` (B's connectivity, for
 /// frames computed with it) a sample that settles in a face skips its edge neighbours.
-/// With options.adaptive, see DistanceOptions::adaptive for the samples and statistics.
+/// Samples: along every edge at most `spacing` mean edge lengths of A apart and inside every
+/// triangle on a barycentric lattice (about 8 per triangle at the default 0.25 on a regular mesh;
+/// Metro's default is 10 per face); mean and RMS are those of the samples.
+/// With options.adaptive, a coarse pass samples every vertex and every centroid of A; mean and
+/// RMS are the integrals of d and d² over A's area by the rule of degree 2 on each triangle (1/12
+/// of the area at each corner, 3/4 at the centroid). Then the triangles whose samples reach
+/// `refine_above` times the largest sample are sampled at twice `spacing`, and those whose
+/// samples then reach sqrt(refine_above) times the largest so far at `spacing` (all three edges
+/// and the lattice); the maximum is taken over every sample (DistanceStats::samples counts them
+/// all). Every sample's distance is exact and the triangles refined depend on those distances
+/// alone. The default refine_above is the largest value that still finds the finest uniform
+/// sampling's maximum on captured sequences (bench_sequence measures it).
+/// With options.corresponding_triangles (a frame and its corrected output share their
+/// connectivity), the first sample of A's triangle t tries B's triangle t first (with
+/// `adaptive`, a vertex tries the first triangle using it, a centroid its own triangle): only
+/// where the search starts, the distances stay exact.
 /// (DistanceMeter measures many frames of one connectivity with the same results, keeping the
 /// sampling layout and the scratch memory from call to call.)
 /// Deterministic: the result does not depend on the number of threads. No samples (A has no

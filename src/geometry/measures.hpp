@@ -12,43 +12,10 @@
 #include "geometry/quality.hpp"
 #include "geometry/shear.hpp"
 #include "mesh/mesh.hpp"
-#include "core/options_table.hpp"
+#include "geometry/measure_options.hpp"
 
 namespace sm {
 
-/// "measures" of the single-mesh jobs: how the report measures the meshes (paper Tables 1–3).
-struct MeasureOptions {
-  double spacing = 0.25;        ///< Metro-style sample spacing, in mean edge lengths
-  bool adaptive = false;        ///< DistanceOptions::adaptive (false: the paper's uniform samples)
-  double feature_angle = 30.0;  ///< dihedral angle (degrees) above which an edge of N is sharp
-  /// Increasing bin edges of the shear histogram (eq. 8); a last edge "inf" (infinity) counts the
-  /// degenerate triangles too.
-  std::vector<double> shear_bins = {0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, INFINITY};
-};
-
-template <>
-inline const Fields<MeasureOptions>& fields_of<MeasureOptions>() {
-  using O = MeasureOptions;
-  static const Fields<O> fields = {
-      field<&O::spacing>("spacing", above(0),
-                         "Metro-style sample spacing along edges and inside triangles, in mean "
-                         "edge lengths of the sampled mesh"),
-      field<&O::adaptive>("adaptive", any_value(),
-                          "as the sequence job's `measures.adaptive`: vertices and centroids "
-                          "first, then only the triangles near the maximum at twice `spacing` "
-                          "and at `spacing` (mean and RMS: area integrals); `false`: every "
-                          "triangle at `spacing`, as the paper's Tables"),
-      field<&O::feature_angle>("feature_angle", open(0, 180),
-                               "an edge of N whose two triangles' normals differ by more than "
-                               "this many degrees is a sharp (feature) edge, measured in "
-                               "`measures.csv`"),
-      field<&O::shear_bins>("shear_bins", any_value(),
-                            "bin edges of the shear histogram (eq. 8), one "
-                            "`shear_hist_<lower edge>` column per bin; a last edge `\"inf\"` also "
-                            "counts degenerate triangles"),
-  };
-  return fields;
-}
 
 /// Interior edges of a mesh whose dihedral angle exceeds a threshold. The dihedral angle of an
 /// edge is the angle between the unit normals of its two triangles: 0 on a flat stretch, 90° on

@@ -9,6 +9,7 @@
 #include "massage/massage.hpp"
 #include "core/key_type.hpp"
 #include "massage/massage_keys.hpp"
+#include "geometry/measure_keys.hpp"
 #include "geometry/measures.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"

@@ -5,6 +5,7 @@
 #include "geometry/shear.hpp"
 #include "io/options_json.hpp"
 #include "core/errors.hpp"
+#include "geometry/measure_keys.hpp"
 #include "geometry/measures.hpp"
 #include "pipeline/mesh_jobs/mesh_report.hpp"
 #include "python/bindings.hpp"

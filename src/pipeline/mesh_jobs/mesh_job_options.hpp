@@ -10,6 +10,7 @@
 #include "massage/massage_keys.hpp"
 #include "core/options_table.hpp"
 #include "pipeline/sequence/job_kind.hpp"
+#include "geometry/measure_keys.hpp"
 #include "geometry/measures.hpp"
 
 namespace sm {

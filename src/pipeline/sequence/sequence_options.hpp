@@ -9,6 +9,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "geometry/distance.hpp"
+#include "geometry/distance_keys.hpp"
 #include "io/gltf/gltf_load.hpp"
 #include "io/gltf/gltf_write.hpp"
 #include "io/point_cache.hpp"
