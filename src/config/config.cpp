@@ -87,6 +87,9 @@ void validate(const json& doc, const SequenceJobOptions& c) {
             "output keeps; use \"obj\" for OBJ frames");
   if (has(doc.at("output"), "gltf") && c.output.format != OutputFormat::Gltf)
     fail_at("output.gltf", "only applies to output.format \"gltf\"");
+  if (c.output.gltf.fps)
+    fail_at("output.gltf.fps",
+            "only for the track job's frames; a glTF input keeps its own frame times");
   if (has(doc.at("output"), "point_cache") && !point_cache_format(c.output.format))
     fail_at("output.point_cache", "only applies to output.format \"pc2\" or \"mdd\"");
   if (c.output.format == OutputFormat::Pc2 && c.output.on_failure == OnFailure::Skip)
@@ -140,11 +143,7 @@ void validate_track(const json& doc, const TrackJobOptions& c) {
   if (has(templ, "frame") && has(templ, "mesh"))
     fail_at("template", "give \"frame\" or \"mesh\", not both");
   const json& output = doc.at("output");
-  if (c.output.format == OutputFormat::Gltf)
-    fail_at("output.format",
-            "\"gltf\" needs a glTF input to rebuild; the track job writes \"obj\" frames, or "
-            "\"pc2\" / \"mdd\" with rest.obj");
-  if (has(output, "gltf")) fail_at("output.gltf", "only applies to output.format \"gltf\"");
+  if (has(output, "gltf") && c.output.format != OutputFormat::Gltf) fail_at("output.gltf", "only applies to output.format \"gltf\"");
   if (has(output, "point_cache") && !point_cache_format(c.output.format))
     fail_at("output.point_cache", "only applies to output.format \"pc2\" or \"mdd\"");
   if (c.output.on_failure == OnFailure::Skip)

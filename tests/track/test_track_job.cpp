@@ -11,6 +11,8 @@
 
 #include "config/config.hpp"
 #include "io/atomic_file.hpp"
+#include "io/gltf/gltf_file.hpp"
+#include "io/gltf/gltf_load.hpp"
 #include "io/mesh_file.hpp"
 #include "io/obj.hpp"
 #include "core/errors.hpp"
@@ -295,4 +297,59 @@ TEST_CASE("track job: bad input is refused with the file, frame and key", "[trac
   const std::string message =
       error_of<InputError>([&] { run_track_job(plan_track_job(job(dir / "raw", dir / "out"))); });
   CHECK(message.find("frame 2 ('" + bad.string() + "')") == 0);
+}
+
+TEST_CASE("track job: GLB output, a morph target per frame on the template's vertices",
+          "[track][job]") {
+  TempDir dir("track_job_glb");
+  write_capture(dir / "raw", bending_limb(0.5, 0.02), 4, 17);
+  const TrackResult obj_run = run_track_job(plan_track_job(job(dir / "raw", dir / "obj")));
+  TrackJobOptions glb_job = job(dir / "raw", dir / "glb");
+  glb_job.output.format = OutputFormat::Gltf;
+  glb_job.output.gltf.fps = 30;
+  const TrackResult glb_run = run_track_job(plan_track_job(glb_job));
+  CHECK(glb_run.lost == obj_run.lost);
+  REQUIRE(fs::exists(dir / "glb/sequence.glb"));
+  CHECK_FALSE(fs::exists(dir / "glb/frames"));
+
+  GltfInputOptions input;
+  input.file = dir / "glb/sequence.glb";
+  const GltfSequence glb = load_gltf_sequence(input);
+  REQUIRE(glb.num_frames() == 4);
+  for (int k = 0; k < 4; ++k) CHECK(glb.times[size_t(k)] == Approx(k / 30.0));
+  // The template's texture coordinates travel (one glTF vertex per v/vt pair), and its rest
+  // pose is the template's: each glTF vertex is found among the template's vertices.
+  const TriMesh t = read_mesh(dir / "raw" / frame_name(0, "obj"));
+  CHECK(glb.gltf_vertices == t.num_vertices());
+  CHECK(glb.rest.num_triangles() == t.num_triangles());
+  const double h = mean_edge_length(t);
+  std::vector<int> template_vertex(size_t(glb.gltf_vertices), -1);
+  for (int g = 0; g < glb.gltf_vertices; ++g) {
+    const Eigen::RowVector3d p = glb.rest.V.row(glb.weld_map[size_t(g)]);
+    for (int i = 0; i < t.num_vertices(); ++i)
+      if ((t.V.row(i) - p).norm() < 1e-4 * h) template_vertex[size_t(g)] = i;
+    REQUIRE(template_vertex[size_t(g)] >= 0);
+  }
+  const GltfFile file = load_gltf_file(dir / "glb/sequence.glb");
+  const auto& attributes = file.model.meshes.at(0).primitives.at(0).attributes;
+  CHECK(attributes.count("TEXCOORD_0") == 1);
+  CHECK(attributes.count("NORMAL") == 1);
+  CHECK(file.model.meshes.at(0).primitives.at(0).targets.size() == 4);
+  // Every frame plays the tracked positions the OBJ output writes (float32 precision).
+  for (int k = 0; k < 4; ++k) {
+    INFO("frame " << k);
+    const TriMesh tracked = read_mesh(dir / "obj/frames" / frame_name(k, "obj"));
+    const Positions played = evaluate_gltf_vertices(glb, glb.times[size_t(k)]);
+    double worst = 0;
+    for (int g = 0; g < glb.gltf_vertices; ++g)
+      worst = std::max(worst, (played.row(g) - tracked.V.row(template_vertex[size_t(g)])).norm());
+    CHECK(worst < 1e-4 * h);
+  }
+  // The frame rate is the track job's: a glTF input keeps its own times.
+  CHECK(error_of<ConfigError>([&] {
+          parse_config(json::parse(R"({"job": "sequence", "input": {"gltf": "a.glb"},
+                                       "output": {"dir": "out", "format": "gltf",
+                                                  "gltf": {"fps": 30}}})"),
+                       dir.path());
+        }).find("output.gltf.fps: ") == 0);
 }

@@ -212,9 +212,12 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
 }  // namespace
 
 GltfFile load_gltf_file(const fs::path& path) {
+  return parse_gltf_file(path, read_file(path));
+}
+
+GltfFile parse_gltf_file(const fs::path& path, const std::string& bytes) {
   GltfFile out;
   out.path = path;
-  const std::string bytes = read_file(path);
   const bool is_glb = bytes.size() >= 4 && read_u32(bytes, 0) == kGlbMagic;
   GlbLayout layout;
   if (is_glb) layout = check_glb(path, bytes);

@@ -35,6 +35,10 @@ inline constexpr int kGltfMaxJsonDepth = 128;
 /// KHR_texture_transform, KHR_texture_basisu, EXT_texture_webp and KHR_materials_*).
 GltfFile load_gltf_file(const std::filesystem::path& path);
 
+/// The same checks and errors for the asset's bytes, read already; `path` names it in messages
+/// and its folder is where external resources are looked up.
+GltfFile parse_gltf_file(const std::filesystem::path& path, const std::string& bytes);
+
 /// Whether extension `name` survives into a file written from this asset: the texture, material
 /// and quantization extensions (the writer copies materials, textures and attributes verbatim).
 bool gltf_extension_is_kept(const std::string& name);

@@ -123,14 +123,18 @@ void weld_rest_mesh(const GltfFile& file, const GltfMeshGeometry& geometry, Gltf
 }  // namespace
 
 GltfSequence load_gltf_sequence(const GltfInputOptions& options) {
+  return gltf_sequence_of(load_gltf_file(options.file), options);
+}
+
+GltfSequence gltf_sequence_of(GltfFile loaded, const GltfInputOptions& options) {
   auto scene = std::make_shared<GltfScene>();
-  scene->file = load_gltf_file(options.file);
+  scene->file = std::move(loaded);
   const GltfFile& file = scene->file;
   const tinygltf::Model& m = file.model;
   check_node_references(file);
 
   GltfSequence s;
-  s.file = options.file;
+  s.file = file.path;
   std::vector<std::string> names;
   for (const tinygltf::Mesh& mesh : m.meshes) names.push_back(mesh.name);
   s.mesh = options.mesh.empty() && !options.mesh_index

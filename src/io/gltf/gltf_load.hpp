@@ -57,6 +57,7 @@ inline const Fields<GltfInputOptions>& fields_of<GltfInputOptions>() {
   return fields;
 }
 
+struct GltfFile;   // io/gltf/gltf_file.hpp: a loaded asset
 struct GltfScene;  // io/gltf/gltf_scene.hpp: the source asset, rig and mesh geometry
 
 /// A glTF animation as a sequence of frames on one welded connectivity. Copying is cheap (the
@@ -82,6 +83,11 @@ struct GltfSequence {
   int dropped_triangles = 0;      ///< triangles that collapse when welded (left out of `rest`)
 
   std::shared_ptr<const GltfScene> scene;
+  /// Built from an OBJ mesh (gltf_from_obj.hpp): rest vertex -> the row of the `source_rows`
+  /// positions a frame is given as (the OBJ's `v` rows); empty for an asset loaded from a file,
+  /// whose frames are on the rest vertices.
+  std::vector<int> rest_source;
+  int source_rows = 0;
 
   int num_frames() const { return int(times.size()); }
 };
@@ -91,6 +97,9 @@ struct GltfSequence {
 /// malformed glTF, an unknown mesh or animation, a file without animation (a static model is not a
 /// sequence), or a mesh without triangles.
 GltfSequence load_gltf_sequence(const GltfInputOptions& options);
+
+/// The same for an asset loaded already (`options.file` is not read: `loaded` is that file).
+GltfSequence gltf_sequence_of(GltfFile loaded, const GltfInputOptions& options);
 
 /// Positions of every glTF vertex (gltf_vertices × 3, world space) at time `t` in seconds.
 Positions evaluate_gltf_vertices(const GltfSequence& sequence, double t);

@@ -1,6 +1,8 @@
 #pragma once
 /// The options of the GLB writer (gltf_write.hpp) and their config keys ("output.gltf"); a low
 /// header, which the writer's parts (gltf_write_source.hpp) include.
+#include <optional>
+
 #include "core/options_table.hpp"
 
 namespace sm {
@@ -14,6 +16,11 @@ struct GltfWriteOptions {
   /// surface (omitted for primitives without NORMAL; false drops normals and tangents so viewers
   /// compute flat normals, halving the file).
   bool normals = true;
+  /// Frames per second of frames without times (the track job's raw frames): frame k shows
+  /// from k / fps seconds on; unset: kDefaultFps. A glTF input keeps its own times (and refuses
+  /// the key).
+  std::optional<double> fps;
+  static constexpr double kDefaultFps = 24.0;
 };
 
 template <>
@@ -27,6 +34,9 @@ inline const Fields<GltfWriteOptions>& fields_of<GltfWriteOptions>() {
                          "NORMAL/TANGENT morph deltas that turn the source's normals with the "
                          "corrected surface; `false` writes positions only (viewers compute "
                          "flat normals)"),
+      field<&O::fps>("fps", left_open(0, 1e6),
+                     "frame times of the track job's `sequence.glb`: frame k from k / fps "
+                     "seconds on; `null`: 24 (a glTF input keeps its own times)"),
   };
   return fields;
 }

@@ -73,11 +73,10 @@ bool GlbFramesOutput::enabled(const SequenceJobOptions& config) {
 
 const char* GlbFramesOutput::help() {
   return "  positions/<frame>.bin, sequence.glb\n"
-         "                              with \"format\": \"gltf\" (glTF input): each frame's "
-         "corrected\n"
-         "                              positions, and the corrected animation as one GLB, a "
-         "morph\n"
-         "                              target per frame (a shard writes positions/ only)\n";
+         "                              with \"format\": \"gltf\" (glTF input, or the track\n"
+         "                              job): each frame's corrected positions, and the\n"
+         "                              corrected animation as one GLB, a morph target per\n"
+         "                              frame (a shard writes positions/ only)\n";
 }
 
 json GlbFramesOutput::report() const {
@@ -103,9 +102,15 @@ void GlbFramesOutput::assemble(const FinishedFrames& done, const PositionsReader
   written.times.clear();
   for (int i : done.frames) written.times.push_back(sequence.times[size_t(i)]);
   const Eigen::Index n = sequence.rest.num_vertices();
-  write_gltf_sequence(
-      config_.output.dir / "sequence.glb", written, [&](int k) { return read(k, n); },
-      config_.output.gltf);
+  // A sequence built from an OBJ template: the frames are positions of its `v` rows.
+  const auto frame = [&](int k) -> Positions {
+    if (sequence.rest_source.empty()) return read(k, n);
+    const Positions V = read(k, sequence.source_rows);
+    Positions rest(n, 3);
+    for (Eigen::Index r = 0; r < n; ++r) rest.row(r) = V.row(sequence.rest_source[size_t(r)]);
+    return rest;
+  };
+  write_gltf_sequence(config_.output.dir / "sequence.glb", written, frame, config_.output.gltf);
 }
 
 }  // namespace sm

@@ -9,6 +9,7 @@
 
 #include "geometry/shear.hpp"
 #include "io/atomic_file.hpp"
+#include "io/gltf/gltf_from_obj.hpp"
 #include "io/csv.hpp"
 #include "core/errors.hpp"
 #include "core/timing.hpp"
@@ -102,6 +103,16 @@ FrameSummary frame_summary(const TrackRow& row, const std::string& name, int ver
   return s;
 }
 
+// sequence.glb's source ("format": "gltf"): the template as glTF, frame k at k / fps seconds.
+std::function<std::shared_ptr<const GltfSequence>()> template_gltf(const TrackPlan& plan) {
+  return [obj = plan.layout.obj, count = plan.files.size(), fps = plan.config.output.gltf.fps.value_or(GltfWriteOptions::kDefaultFps),
+          name = plan.template_source] {
+    std::vector<double> times;
+    for (size_t k = 0; k < count; ++k) times.push_back(double(k) / fps);
+    return std::make_shared<const GltfSequence>(gltf_sequence_from_obj(*obj, times, name));
+  };
+}
+
 }  // namespace
 
 TrackPlan plan_track_job(const TrackJobOptions& config) {
@@ -158,9 +169,7 @@ TrackPlan plan_track_job(const TrackJobOptions& config) {
   SequencePlan& out = plan.outputs;
   out.config = output_job_options(c);
   out.source = std::make_shared<TrackLayoutSource>(c.input.frames, plan.files, plan.layout);
-  out.outputs = make_frame_outputs({out.config, out.source, [] {
-                                      return std::shared_ptr<const GltfSequence>();
-                                    }});
+  out.outputs = make_frame_outputs({out.config, out.source, template_gltf(plan)});
   out.selected = plan.selected;
   out.run_frames = plan.selected;
   out.template_frame = plan.template_frame;

@@ -88,8 +88,8 @@ inline const Fields<TrackJobOptions>& fields_of<TrackJobOptions>() {
                        "frame has: a raw frame (`frame`) or a clean mesh (`mesh`), not both"),
       field<&O::output>("output", any_value(),
                         "what is written under `output.dir`: the sequence job's outputs, on the "
-                        "template's connectivity (`\"format\"`: `\"obj\"`, `\"pc2\"` or "
-                        "`\"mdd\"`); \"before\" in the checker, coloured and report outputs is "
+                        "template's connectivity (`\"format\"`: `\"obj\"`, `\"pc2\"`, "
+                        "`\"mdd\"` or `\"gltf\"`); \"before\" in the checker, coloured and report outputs is "
                         "the registration, \"after\" the refined result")
           .required("an object with \"dir\", the output folder"),
       field<&O::track>("track", any_value(),
