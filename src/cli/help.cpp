@@ -82,11 +82,16 @@ input again). It checks first that all N shard reports
 config apart from "threads" and "frames_in_flight", template and program: their hashes), and
 that every selected frame is in exactly one shard, with its record and outputs. The shard files
 are left in place.
+
+The shards of a track job are merged the same way: summary.csv, report.json and the
+whole-sequence files from every shard's report and frame files, the job planned again from the
+config (its raw frames and template must be reachable); the seams (first frames of the shards
+after the first, tracked from the template) are listed on stderr and in report.json.
 )";
 
 const char* const kMergeHelpFooter = R"(Exit status: 0 merged; 3 missing or inconsistent shards or frames (the message names them and
 the command that redoes them), nothing written; 4 I/O error, or a shard or run still holds the
-folder's lock; 5 merged, but some frames failed (as for a run).
+folder's lock; 5 merged, but some frames failed or were lost (as for a run).
 )";
 
 const char* const kMeasureHelp = R"(Usage: seqmassage measure [options] MESH REFERENCE

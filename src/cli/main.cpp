@@ -35,6 +35,7 @@
 #include "pipeline/sequence/shard.hpp"
 #include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/track/track_job.hpp"
+#include "pipeline/track/track_merge.hpp"
 
 namespace {
 
@@ -283,10 +284,10 @@ int run_mesh_job(const Args& args, sm::MeshJobOptions config) {
 // The track job: frames in order, one progress line each; lost frames are listed and end the
 // run with the processing exit code, like failed frames of a sequence.
 int run_track(const Args& args, sm::TrackJobOptions config) {
-  for (const auto& [given, option] :
-       {std::pair{args.shard.has_value(), "--shard"}, std::pair{args.resume, "--resume"}})
-    if (given)
-      throw sm::ConfigError(std::string(option) + ": not available for \"job\": \"track\" yet");
+  if (args.resume && !args.quiet)  // the scheduler scripts pass it for every job
+    std::cerr << "seqmassage: warning: --resume: a track job keeps no per-frame records; the "
+                 "frames are tracked again\n";
+  if (args.shard) config.shard = sm::parse_shard(*args.shard, "--shard");
   if (args.threads) config.threads = *args.threads;
   if (args.frames) config.input.range = sm::parse_frame_range(*args.frames, "--frames");
   const sm::TrackPlan plan = sm::plan_track_job(config);
@@ -321,15 +322,17 @@ int run_track(const Args& args, sm::TrackJobOptions config) {
     std::vector<std::string> names;
     for (const auto& output : plan.outputs.outputs)
       for (const std::string& n : output->results().before_records) names.push_back(n);
-    names.push_back("summary.csv");
-    names.push_back("report.json");
+    names.push_back(sm::summary_file_name(plan.config.shard));
+    names.push_back(sm::report_file_name(plan.config.shard));
     print_results(out, names);
+    if (plan.config.shard.sharded() && !result.interrupted)
+      std::cout << "when every shard is done: seqmassage merge " << shown(out) << "\n";
   }
   if (result.interrupted) {
     const int sig = sm::cli::stop_signal();
     std::cerr << "seqmassage: " << sm::cli::stopped_text(sig) << " after " << result.frames.size()
-              << " of " << plan.selected.size() << " frames; they are written and listed in "
-              << shown(out / "summary.csv") << "\n";
+              << " of " << plan.block.size() << " frames; they are written and listed in "
+              << shown(out / sm::summary_file_name(plan.config.shard)) << "\n";
     return sm::cli::stopped_exit_code(sig);
   }
   if (result.lost > 0) {
@@ -338,8 +341,8 @@ int run_track(const Args& args, sm::TrackJobOptions config) {
         std::cerr << "seqmassage: frame " << r.frame << " (" << r.file << ") lost: " << r.beyond
                   << "\n";
     std::cerr << "seqmassage: " << result.lost << " of " << result.frames.size()
-              << " frames lost (written as their best attempt; see " << shown(out / "summary.csv")
-              << ")\n";
+              << " frames lost (written as their best attempt; see "
+              << shown(out / sm::summary_file_name(plan.config.shard)) << ")\n";
     return kProcessing;
   }
   return kOk;
@@ -386,6 +389,28 @@ sm::MeasureFilesRequest parse_measure_args(int argc, char** argv) {
   return out;
 }
 
+// `seqmassage merge` of a track job's shards: lost frames end it with the processing exit code.
+int merge_track(const fs::path& dir, bool quiet) {
+  const sm::TrackMergeResult result = sm::merge_track_shards(dir);
+  if (!quiet) {
+    for (const std::string& w : result.notices) std::cerr << "seqmassage: warning: " << w << "\n";
+    std::cerr << "seqmassage: merged " << result.shards << " shards, " << result.frames.size()
+              << " frames (" << result.lost << " lost, " << result.recovered << " recovered)\n";
+    std::string seams;
+    for (const sm::TrackSeam& seam : result.seams)
+      seams += (seams.empty() ? "" : ", ") + std::to_string(seam.frame);
+    if (!seams.empty())
+      std::cerr << "seqmassage: seams (tracked from the template, not the frame before): frames "
+                << seams << "\n";
+    print_results(dir, result.written);
+  }
+  for (const sm::TrackRow& r : result.frames)
+    if (r.status == sm::TrackStatus::Lost)
+      std::cerr << "seqmassage: frame " << r.frame << " (" << r.file << ") lost: " << r.beyond
+                << "\n";
+  return result.lost > 0 ? kProcessing : kOk;
+}
+
 // "seqmassage merge [options] OUTPUT_DIR" (argv[0] is "merge").
 int run_merge_command(int argc, char** argv) {
   bool quiet = false;
@@ -400,6 +425,7 @@ int run_merge_command(int argc, char** argv) {
     throw UsageError{"seqmassage merge",
                      "expected one output folder, got " + std::to_string(positional.size())};
   const fs::path dir = positional[0];
+  if (sm::shard_job(dir) == "track") return merge_track(dir, quiet);
   const sm::MergeResult result = sm::merge_shards(dir);
   for (const std::string& w : result.notices)
     if (!quiet) std::cerr << "seqmassage: warning: " << w << "\n";

@@ -61,6 +61,31 @@ TEST_CASE("seqmassage runs a track config: frames, summary, exit 0; a lost frame
   CHECK(fs::exists(dir / "out_glitched/frames/f_2.obj"));
 }
 
+TEST_CASE("seqmassage tracks shards of a track config and merges them, naming the seams") {
+  test::TempDir dir("cli_track_shards");
+  write_frames(dir / "raw", false);
+  write_file_atomic(dir / "track.json", R"({ "job": "track", "input": { "frames": "raw" },
+    "output": { "dir": "out", "format": "pc2", "html": false } })");
+  for (const char* shard : {"0/2", "1/2"}) {
+    const test::CliRun r =
+        test::run_cli(dir.path(), std::string("--shard ") + shard + " --resume track.json");
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    CHECK_THAT(r.err, Contains("--resume: a track job keeps no per-frame records"));
+    CHECK_THAT(r.out, Contains("when every shard is done: seqmassage merge out"));
+  }
+  CHECK(fs::exists(dir / "out/summary.shard-1-of-2.csv"));
+  CHECK_FALSE(fs::exists(dir / "out/sequence.pc2"));
+  const test::CliRun merged = test::run_cli(dir.path(), "merge out");
+  INFO(merged.err);
+  REQUIRE(merged.code == 0);
+  CHECK_THAT(merged.err, Contains("merged 2 shards, 5 frames (0 lost, 0 recovered)"));
+  CHECK_THAT(merged.err, Contains("seams (tracked from the template, not the frame before): "
+                                  "frames 2\n"));
+  CHECK(fs::exists(dir / "out/sequence.pc2"));
+  CHECK(fs::exists(dir / "out/summary.csv"));
+}
+
 TEST_CASE("seqmassage refuses bad track input with the key, folder or frame") {
   test::TempDir dir("cli_track_bad");
   write_frames(dir / "raw", false);
@@ -75,9 +100,9 @@ TEST_CASE("seqmassage refuses bad track input with the key, folder or frame") {
   const test::CliRun range = test::run_cli(dir.path(), "range.json");
   CHECK(range.code == 2);
   CHECK_THAT(range.err, Contains("template.frame: 5 is out of range (the folder has 5 frames"));
-  const test::CliRun shard = test::run_cli(dir.path(), "--shard 0/2 range.json");
+  const test::CliRun shard = test::run_cli(dir.path(), "--shard 2/2 range.json");
   CHECK(shard.code == 2);
-  CHECK_THAT(shard.err, Contains("--shard: not available for \"job\": \"track\" yet"));
+  CHECK_THAT(shard.err, Contains("--shard: "));
   std::ofstream(dir / "raw/f_3.ply") << "ply\nformat ascii 1.0\nelement vertex 3\n";
   write_file_atomic(dir / "bad.json", R"({ "job": "track", "input": { "frames": "raw" },
     "output": { "dir": "out" } })");

@@ -17,6 +17,7 @@
 #include "io/obj.hpp"
 #include "core/errors.hpp"
 #include "pipeline/track/track_job.hpp"
+#include "pipeline/track/track_merge.hpp"
 #include "support/error_of.hpp"
 #include "support/temp_dir.hpp"
 #include "support/untracked_sequence.hpp"
@@ -352,4 +353,66 @@ TEST_CASE("track job: GLB output, a morph target per frame on the template's ver
                                                   "gltf": {"fps": 30}}})"),
                        dir.path());
         }).find("output.gltf.fps: ") == 0);
+}
+
+TEST_CASE("track job: shards tracked apart and merged, seams reported", "[track][job]") {
+  TempDir dir("track_job_shards");
+  write_capture(dir / "raw", rolling_sheet(/*speed=*/0.5, /*turn=*/0.02), 7, 29);
+  const auto config = [&](const fs::path& out) {
+    TrackJobOptions c = job(dir / "raw", out);
+    c.output.format = OutputFormat::Pc2;
+    return c;
+  };
+  const TrackResult whole = run_track_job(plan_track_job(config(dir / "whole")));
+  REQUIRE(whole.frames.size() == 7);
+
+  // Blocks of 7 frames in 3 shards: 0-1, 2-3, 4-6; the template frame 0 is in the first.
+  for (int i = 0; i < 3; ++i) {
+    TrackJobOptions c = config(dir / "sharded");
+    c.shard = {i, 3};
+    const TrackPlan plan = plan_track_job(c);
+    CHECK(plan.block.front() == std::vector<int>{0, 2, 4}[size_t(i)]);
+    CHECK(plan.order.front() == plan.block.front());  // forward from the block's first frame
+    const TrackResult r = run_track_job(plan);
+    CHECK(r.lost == 0);
+    CHECK(fs::exists(dir / "sharded" / summary_file_name(c.shard)));
+  }
+  CHECK_FALSE(fs::exists(dir / "sharded/sequence.pc2"));
+  CHECK_FALSE(fs::exists(dir / "sharded/summary.csv"));
+
+  const TrackMergeResult merged = merge_track_shards(dir / "sharded");
+  CHECK(merged.shards == 3);
+  REQUIRE(merged.frames.size() == 7);
+  REQUIRE(merged.seams.size() == 2);
+  CHECK(merged.seams[0].frame == 2);
+  CHECK(merged.seams[1].frame == 4);
+  CHECK(merged.lost == 0);
+  // The first block is tracked as the whole run tracks it: the same rows and positions.
+  const auto rows = read_summary(dir / "sharded/summary.csv");
+  const auto whole_rows = read_summary(dir / "whole/summary.csv");
+  REQUIRE(rows.size() == 7);
+  for (int k = 0; k < 2; ++k) CHECK(rows[size_t(k)] == whole_rows[size_t(k)]);
+  const std::string cache = read_file(dir / "sharded/sequence.pc2");
+  const std::string whole_cache = read_file(dir / "whole/sequence.pc2");
+  REQUIRE(cache.size() == whole_cache.size());
+  const size_t frame_bytes = (cache.size() - 32) / 7;
+  CHECK(cache.substr(0, 32 + 2 * frame_bytes) == whole_cache.substr(0, 32 + 2 * frame_bytes));
+  const json report = json::parse(read_file(dir / "sharded/report.json"));
+  CHECK(report.at("merged").at("seams").size() == 2);
+  CHECK(report.at("frames").size() == 7);
+
+  // A shard missing, or run with another config: named, with the command that redoes it.
+  fs::remove(dir / "sharded/report.shard-1-of-3.json");
+  const std::string missing = error_of<InputError>([&] { merge_track_shards(dir / "sharded"); });
+  INFO(missing);
+  CHECK(missing.find("shard 1/3: no report.shard-1-of-3.json; missing frames 2 (take_0002.obj) to 3") !=
+        std::string::npos);
+  CHECK(missing.find("seqmassage --shard 1/3 CONFIG") != std::string::npos);
+  TrackJobOptions odd = config(dir / "sharded");
+  odd.shard = {1, 3};
+  odd.track.lost_distance = 0.5;
+  run_track_job(plan_track_job(odd));
+  const std::string other = error_of<InputError>([&] { merge_track_shards(dir / "sharded"); });
+  CHECK(other.find("report.shard-1-of-3.json ran another config: track.lost_distance") !=
+        std::string::npos);
 }

@@ -20,17 +20,7 @@ namespace sm {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-namespace {
-
-struct ShardReport {
-  ShardOptions shard;
-  std::string file;  // report.shard-I-of-N.json
-  json report;
-  std::vector<std::pair<int, std::string>> frames;  // (index, name) in order
-};
-
-// The first JSON path at which `a` and `b` differ, with both values ("" if equal).
-std::string first_difference(const json& a, const json& b, const std::string& path = "") {
+std::string first_difference(const json& a, const json& b, const std::string& path) {
   if (a == b) return "";
   if (a.is_object() && b.is_object()) {
     std::set<std::string> keys;
@@ -48,8 +38,6 @@ std::string first_difference(const json& a, const json& b, const std::string& pa
   return (path.empty() ? std::string("the top level") : path) + " (" + left + " vs " + right + ")";
 }
 
-// The job's config as shards must agree on it: threads, frames_in_flight and the output
-// folder's path (mounted elsewhere on another node) may differ.
 json job_config(const json& config) {
   json c = config;
   c.erase("threads");
@@ -58,7 +46,6 @@ json job_config(const json& config) {
   return c;
 }
 
-// "frames 5 to 9" / "frame 5", by contiguous runs of indices, then names where known.
 std::string describe_frames(const std::vector<int>& frames,
                             const std::map<int, std::string>& names) {
   std::string text;
@@ -85,7 +72,7 @@ std::string describe_frames(const std::vector<int>& frames,
   return text;
 }
 
-std::vector<ShardReport> find_shard_reports(const fs::path& dir) {
+std::vector<ShardReport> read_shard_reports(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     throw IoError("cannot open folder '" + dir.string() +
@@ -142,6 +129,8 @@ std::vector<ShardReport> find_shard_reports(const fs::path& dir) {
   return found;
 }
 
+namespace {
+
 // What merge works from, found and read by find_shards.
 struct Shards {
   fs::path dir;
@@ -155,7 +144,7 @@ struct Shards {
 Shards find_shards(const fs::path& output_dir) {
   Shards s;
   s.dir = fs::absolute(output_dir).lexically_normal();
-  s.reports = find_shard_reports(s.dir);
+  s.reports = read_shard_reports(s.dir);
   s.count = s.reports.front().shard.count;
   s.header = report_header_from_json(s.reports.front().report);
   read_options(s.header.config, s.config, s.dir);

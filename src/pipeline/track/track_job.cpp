@@ -15,6 +15,7 @@
 #include "core/timing.hpp"
 #include "pipeline/outputs/frame_output.hpp"
 #include "pipeline/sequence/input_clash.hpp"
+#include "pipeline/cluster/frame_record.hpp"
 #include "pipeline/cluster/output_lock.hpp"
 #include "pipeline/report/report.hpp"
 #include "pipeline/sequence/shard.hpp"
@@ -25,14 +26,12 @@ using json = nlohmann::json;
 
 namespace {
 
-constexpr const char* kSummary = "summary.csv";
-constexpr const char* kReport = "report.json";
 
 // Refuses two selected frames whose outputs share a name, letter case aside (a.obj and a.ply
 // both write frames/a.obj).
 void check_output_names(const TrackPlan& plan) {
   std::map<std::string, int> seen;
-  for (int i : plan.selected) {
+  for (int i : plan.block) {
     std::string name = plan.outputs.source->name(i);
     for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
     const auto [at, fresh] = seen.emplace(name, i);
@@ -51,9 +50,9 @@ void check_outputs(const TrackPlan& plan) {
   for (const fs::path& file : plan.files) inputs.push_back({"the input", file});
   std::vector<fs::path> outputs;
   for (const auto& output : plan.outputs.outputs)
-    for (fs::path& file : output->files(plan.selected)) outputs.push_back(std::move(file));
-  outputs.push_back(c.output.dir / kSummary);
-  outputs.push_back(c.output.dir / kReport);
+    for (fs::path& file : output->files(plan.block)) outputs.push_back(std::move(file));
+  outputs.push_back(c.output.dir / summary_file_name(c.shard));
+  outputs.push_back(c.output.dir / report_file_name(c.shard));
   refuse_overwriting_inputs(inputs, outputs);
 }
 
@@ -144,11 +143,17 @@ TrackPlan plan_track_job(const TrackJobOptions& config) {
     plan.template_source = c.templ.mesh.filename().string();
     plan.layout = read_template_layout(c.templ.mesh, "template.mesh");
   }
-  // Tracked from the template frame forward, then backward from it; a mesh: forward.
-  for (int i : plan.selected)
-    if (i >= plan.template_frame) plan.order.push_back(i);
-  for (auto it = plan.selected.rbegin(); it != plan.selected.rend(); ++it)
-    if (*it < plan.template_frame) plan.order.push_back(*it);
+  // Tracked from the template frame forward, then backward from it; a mesh: forward. A shard
+  // whose block does not reach the template frame: forward from the block's first frame.
+  plan.block = shard_frames(plan.selected, c.shard);
+  plan.start_frame = plan.template_frame;
+  if (c.shard.sharded() && !plan.block.empty() &&
+      (plan.template_frame < plan.block.front() || plan.template_frame > plan.block.back()))
+    plan.start_frame = plan.block.front();
+  for (int i : plan.block)
+    if (i >= plan.start_frame) plan.order.push_back(i);
+  for (auto it = plan.block.rbegin(); it != plan.block.rend(); ++it)
+    if (*it < plan.start_frame) plan.order.push_back(*it);
 
   const TriMesh& templ = plan.layout.obj->mesh;
   plan.weld = weld_by_position(templ.V, templ.F);
@@ -171,13 +176,13 @@ TrackPlan plan_track_job(const TrackJobOptions& config) {
   out.source = std::make_shared<TrackLayoutSource>(c.input.frames, plan.files, plan.layout);
   out.outputs = make_frame_outputs({out.config, out.source, template_gltf(plan)});
   out.selected = plan.selected;
-  out.run_frames = plan.selected;
+  out.run_frames = plan.block;
   out.template_frame = plan.template_frame;
   out.template_source = plan.template_source;
   out.templ = templ;
   out.threads = plan.threads;
   for (const auto& output : out.outputs)
-    for (std::string& warning : output->check(plan.selected))
+    for (std::string& warning : output->check(plan.block))
       plan.warnings.push_back(std::move(warning));
   check_output_names(plan);
   check_outputs(plan);
@@ -194,6 +199,15 @@ std::string describe_track_plan(const TrackPlan& plan) {
   if (plan.selected.size() > 1)
     s << " ... " << plan.files[size_t(plan.selected.back())].filename().string();
   s << "\n";
+  if (c.shard.sharded()) {
+    s << shard_label(c.shard) << ": " << plan.block.size() << " frames";
+    if (!plan.block.empty())
+      s << ", " << plan.files[size_t(plan.block.front())].filename().string() << " to "
+        << plan.files[size_t(plan.block.back())].filename().string() << ", tracked from "
+        << (plan.start_frame == plan.template_frame ? "the template frame"
+                                                    : "the template registered onto the first");
+    s << "\n";
+  }
   s << "template: " << plan.template_source << ", " << plan.layout.obj->mesh.num_vertices()
     << " vertices (" << plan.weld.mesh.num_vertices() << " welded), "
     << plan.weld.mesh.num_triangles() << " triangles\n";
@@ -206,8 +220,8 @@ std::string describe_track_plan(const TrackPlan& plan) {
     << " of the triangles folded\n";
   s << "threads: " << plan.threads << "\n";
   s << "output: " << c.output.dir.string() << "\n";
-  for (const auto& output : plan.outputs.outputs) s << output->describe(plan.selected);
-  s << "  " << kSummary << ", " << kReport << "\n";
+  for (const auto& output : plan.outputs.outputs) s << output->describe(plan.block);
+  s << "  " << summary_file_name(c.shard) << ", " << report_file_name(c.shard) << "\n";
   for (const std::string& w : plan.warnings) s << "warning: " << w << "\n";
   return s.str();
 }
@@ -233,7 +247,9 @@ class TrackRun {
   void start() {
     const fs::path& out = plan_.config.output.dir;
     remove_stale_temporaries(out);
-    for (const char* name : {kSummary, kReport}) remove_output_file(out / name);
+    const ShardOptions& shard = plan_.config.shard;
+    for (const std::string& name : {summary_file_name(shard), report_file_name(shard)})
+      remove_output_file(out / name);
     for (const auto& output : plan_.outputs.outputs) {
       for (const fs::path& dir : output->folders()) remove_stale_temporaries(dir);
       output->start(plan_.outputs);
@@ -251,7 +267,7 @@ class TrackRun {
         break;
       }
       const int index = plan_.order[k];
-      if (k > 0 && index < plan_.template_frame && plan_.order[k - 1] >= plan_.template_frame)
+      if (k > 0 && index < plan_.start_frame && plan_.order[k - 1] >= plan_.start_frame)
         tracker.reset();  // the backward pass starts at the template again
       track_frame(tracker, index);
       if (hooks_.progress)
@@ -335,8 +351,30 @@ class TrackRun {
       for (std::string& warning : output->finish(done).warnings)
         result_.warnings.push_back(std::move(warning));
     result_.seconds = seconds_since(t0_);
-    write_file_atomic(c.output.dir / kSummary, format_track_summary_csv(result_.frames));
-    write_file_atomic(c.output.dir / kReport, make_track_report(plan_, result_).dump(2) + "\n");
+    json report = make_track_report(plan_, result_);
+    if (c.shard.sharded()) report["shard"] = shard_section();
+    write_file_atomic(c.output.dir / summary_file_name(c.shard),
+                      format_track_summary_csv(result_.frames));
+    write_file_atomic(c.output.dir / report_file_name(c.shard), report.dump(2) + "\n");
+  }
+
+  // What merge needs of a shard: its block, whether it completed it, and every frame's rows.
+  json shard_section() const {
+    json frames = json::array(), rows = json::array();
+    for (int i : plan_.block)
+      frames.push_back({{"frame", i}, {"file", plan_.outputs.source->name(i)}});
+    for (const auto& [index, row] : rows_) {
+      json entry = to_json(row);
+      entry["summary"] = to_json(summaries_.at(index));
+      entry["record_rows"] = record_rows_.count(index) ? json(record_rows_.at(index)) : json::object();
+      rows.push_back(std::move(entry));
+    }
+    const ShardOptions& shard = plan_.config.shard;
+    return {{"index", shard.index},
+            {"count", shard.count},
+            {"frames", frames},
+            {"complete", !result_.interrupted && rows_.size() == plan_.block.size()},
+            {"rows", rows}};
   }
 
   const TrackPlan& plan_;
@@ -374,6 +412,72 @@ std::string format_track_summary_csv(const std::vector<TrackRow>& rows) {
     csv.end_row();
   }
   return csv.str();
+}
+
+namespace {
+
+json fit_json(const FitFigures& f) {
+  return {{"to_raw_mean", f.to_raw_mean},     {"to_raw_p99", f.to_raw_p99},
+          {"to_raw_max", f.to_raw_max},       {"from_raw_mean", f.from_raw_mean},
+          {"from_raw_p99", f.from_raw_p99},   {"from_raw_max", f.from_raw_max},
+          {"folded", f.folded},               {"shear_mean", f.shear_mean},
+          {"shear_max", f.shear_max}};
+}
+
+FitFigures fit_from_json(const json& j) {
+  FitFigures f;
+  f.to_raw_mean = j.at("to_raw_mean").get<double>();
+  f.to_raw_p99 = j.at("to_raw_p99").get<double>();
+  f.to_raw_max = j.at("to_raw_max").get<double>();
+  f.from_raw_mean = j.at("from_raw_mean").get<double>();
+  f.from_raw_p99 = j.at("from_raw_p99").get<double>();
+  f.from_raw_max = j.at("from_raw_max").get<double>();
+  f.folded = j.at("folded").get<int>();
+  f.shear_mean = j.at("shear_mean").get<double>();
+  f.shear_max = j.at("shear_max").get<double>();
+  return f;
+}
+
+}  // namespace
+
+json to_json(const TrackRow& r) {
+  return {{"frame", r.frame},
+          {"file", r.file},
+          {"status", std::string(name_of(r.status, kTrackStatusNames))},
+          {"recovery", r.recovery},
+          {"beyond", r.beyond},
+          {"fit", fit_json(r.fit)},
+          {"registration_fit", fit_json(r.registration_fit)},
+          {"raw_vertices", r.raw_vertices},
+          {"raw_triangles", r.raw_triangles},
+          {"iterations", r.iterations},
+          {"seconds_register", r.seconds_register},
+          {"seconds_refine", r.seconds_refine}};
+}
+
+TrackRow track_row_from_json(const json& j) {
+  try {
+    TrackRow r;
+    r.frame = j.at("frame").get<int>();
+    r.file = j.at("file").get<std::string>();
+    const std::string status = j.at("status").get<std::string>();
+    bool known = false;
+    for (const auto& [name, value] : kTrackStatusNames)
+      if (status == name) r.status = value, known = true;
+    if (!known) throw InputError("status: unknown value '" + status + "'");
+    r.recovery = j.at("recovery").get<std::string>();
+    r.beyond = j.at("beyond").get<std::string>();
+    r.fit = fit_from_json(j.at("fit"));
+    r.registration_fit = fit_from_json(j.at("registration_fit"));
+    r.raw_vertices = j.at("raw_vertices").get<int>();
+    r.raw_triangles = j.at("raw_triangles").get<int>();
+    r.iterations = j.at("iterations").get<int>();
+    r.seconds_register = j.at("seconds_register").get<double>();
+    r.seconds_refine = j.at("seconds_refine").get<double>();
+    return r;
+  } catch (const json::exception& e) {
+    throw InputError(std::string("a frame's row: ") + e.what());
+  }
 }
 
 json make_track_report(const TrackPlan& plan, const TrackResult& result) {
@@ -420,7 +524,7 @@ json make_track_report(const TrackPlan& plan, const TrackResult& result) {
   r["frames"] = frames;
   json outputs = json::object();
   for (const auto& output : plan.outputs.outputs) outputs.update(output->report());
-  outputs["summary"] = kSummary;
+  outputs["summary"] = "summary.csv";
   r["outputs"] = outputs;
   r["warnings"] = result.warnings;
   if (c.output.timings) r["run"] = {{"seconds", result.seconds}, {"threads", plan.threads}};

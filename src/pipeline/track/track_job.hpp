@@ -8,11 +8,17 @@
 ///
 /// Frames are tracked in order, each from the previous one's fit: from a template frame K
 /// forward to the last selected frame, then from K backward to the first (the template placed
-/// where it was captured); from a template mesh forward from the first selected frame. The
+/// where it was captured); from a template mesh forward from the first selected frame. A shard
+/// (--shard I/N, "shard") tracks its block of the selected frames the same way when the block
+/// holds frame K, else forward from the block's first frame, onto which the template is
+/// registered directly (the tracker's recovery aligns it when it does not fit as placed); its
+/// summary and report are named by shard and `seqmassage merge` (track_merge.hpp) combines them,
+/// reporting the seams, the first frames of the shards after the first. The
 /// parallelism is inside each frame (TBB); the output bytes do not depend on the thread count.
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,7 +35,9 @@ struct TrackPlan {
   TrackJobOptions config;
   std::vector<std::filesystem::path> files;  ///< every raw frame, in natural order
   std::vector<int> selected;                 ///< the frames to track, in frame order
-  std::vector<int> order;                    ///< the same, in the order they are tracked
+  std::vector<int> block;                    ///< the shard's part of them (all, unsharded)
+  std::vector<int> order;                    ///< the block, in the order it is tracked
+  int start_frame = 0;  ///< the block's frames from here on go forward, those before backward
   int template_frame = -1;                   ///< -1 for template.mesh
   std::string template_source;               ///< "frame 0 (a.obj)" or the mesh's file name
   TemplateLayout layout;                     ///< the template as the outputs write it
@@ -88,7 +96,14 @@ TrackResult run_track_job(const TrackPlan& plan, const TrackHooks& hooks = {});
 /// summary.csv of the track job: one row per frame, in frame order.
 std::string format_track_summary_csv(const std::vector<TrackRow>& rows);
 
-/// report.json of the track job.
+/// A frame's entry in report.json's "frames": every field of its row, exact.
+nlohmann::json to_json(const TrackRow& row);
+/// Throws InputError naming the missing or wrong key.
+TrackRow track_row_from_json(const nlohmann::json& json);
+
+/// report.json of the track job. A shard's report.shard-I-of-N.json adds its "shard" section
+/// (track_job.cpp): index, count, its frames, whether it completed them, and every frame's
+/// row, report.html row and outputs' record rows, from which merge finishes the run.
 nlohmann::json make_track_report(const TrackPlan& plan, const TrackResult& result);
 
 }  // namespace sm

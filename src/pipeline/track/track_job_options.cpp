@@ -18,6 +18,7 @@ SequenceJobOptions output_job_options(const TrackJobOptions& options) {
   s.massage = options.massage;
   s.massage.iterations = options.track.refine_iterations;
   s.threads = options.threads;
+  s.shard = options.shard;
   s.config_file = options.config_file;
   return s;
 }

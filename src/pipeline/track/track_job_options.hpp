@@ -12,6 +12,7 @@
 #include "core/options_table.hpp"
 #include "pipeline/sequence/job_kind.hpp"
 #include "pipeline/sequence/sequence_options.hpp"
+#include "pipeline/sequence/shard.hpp"
 #include "track/track_options.hpp"
 
 namespace sm {
@@ -70,6 +71,7 @@ struct TrackJobOptions {
   TrackOptions track;
   MassageOptions massage;  ///< the refinement toward each raw frame (track.refine_iterations)
   int threads = 0;         ///< worker threads, 0 = one per core
+  ShardOptions shard;      ///< this process's block of the selected frames (cluster job arrays)
   /// The file the options were read from (empty from code): an input the outputs must not
   /// overwrite. Not a config key.
   std::filesystem::path config_file;
@@ -101,6 +103,11 @@ inline const Fields<TrackJobOptions>& fields_of<TrackJobOptions>() {
       field<&O::threads>("threads", threads_range(),
                          "worker threads inside each frame (frames are tracked in order); 0 = "
                          "one per core. `--threads` overrides"),
+      field<&O::shard>("shard", any_value(),
+                       "the block of the selected frames this process tracks, for job arrays on "
+                       "a cluster: tracked from the template registered directly onto the "
+                       "block's first frame (or from the template frame, in its block); "
+                       "`--shard I/N` replaces it, `seqmassage merge` combines the shards"),
   };
   return fields;
 }
