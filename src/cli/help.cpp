@@ -64,7 +64,7 @@ Exit status:
   130  interrupted (Ctrl-C, SIGINT): the frames in flight were finished; the frames done are
        written and listed in summary.csv; --resume continues
   143  terminated (SIGTERM, as schedulers send): the same as 130
-  129  hung up (SIGHUP: the terminal or ssh session closed): the same as 130
+  129  hung up (SIGHUP: the terminal or ssh connection closed): the same as 130
 A second SIGINT, SIGTERM or SIGHUP ends the program at once; like SIGKILL, it leaves complete
 files only, and --resume continues. SIGPIPE is ignored: with stderr or stdout closed (piped into
 'head'), the run goes on and its outputs complete.

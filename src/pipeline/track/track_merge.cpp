@@ -1,5 +1,6 @@
 #include "pipeline/track/track_merge.hpp"
 
+#include <algorithm>
 #include <set>
 
 #include "core/errors.hpp"
