@@ -3,11 +3,12 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/SVD>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "core/errors.hpp"
+#include "track/block_cholesky.hpp"
 
 namespace sm {
 
@@ -85,13 +86,15 @@ struct GraphFit::Impl {
   const DeformationGraph& graph;
   TrackOptions options;
   double h;
-  std::vector<int> samples;                  // template vertices used as samples
-  TriangleBvh bvh;                           // the template's, refitted per iteration
-  Csr triangle_nodes;                        // distinct nodes of each triangle's corners
-  std::vector<int> block_offsets{0};         // per node j: blocks (j, k ≥ j)
-  std::vector<int> block_cols;               // k of each block
-  Eigen::SparseMatrix<double> pattern;       // lower triangle of the 6N × 6N matrix
-  std::vector<std::array<int, 36>> slots;    // per block: value index of (row, col), or −1
+  std::vector<int> samples;           // template vertices used as samples
+  TriangleBvh bvh;                    // the template's, refitted per iteration
+  Csr triangle_nodes;                 // distinct nodes of each triangle's corners
+  std::vector<int> block_offsets{0};  // per node j: blocks (j, k ≥ j)
+  std::vector<int> block_cols;        // k of each block
+  BlockCholesky analysed;             // the solver, its pattern analysed once
+  // Solvers with their scratch memory between fits (taken by a fit, then given back).
+  mutable std::mutex spare_mutex;
+  mutable std::vector<std::unique_ptr<BlockCholesky>> spare;
 
   Impl(const TriMesh& t, const DeformationGraph& g, const TrackOptions& o, double mean_edge)
       : templ(t), graph(g), options(o), h(mean_edge), bvh(t) {
@@ -132,35 +135,19 @@ struct GraphFit::Impl {
       block_cols.insert(block_cols.end(), r.begin(), r.end());
       block_offsets.push_back(static_cast<int>(block_cols.size()));
     }
-    // Lower triangle: block (j, k), j ≤ k, holds H(j-rows, k-cols); its transpose sits at
-    // rows 6k.., columns 6j.. (below the diagonal).
-    std::vector<Eigen::Triplet<double>> entries;
-    for (int j = 0; j < N; ++j)
-      for (int b = block_offsets[j]; b < block_offsets[j + 1]; ++b) {
-        const int k = block_cols[b];
-        for (int r = 0; r < 6; ++r)
-          for (int c = 0; c < 6; ++c)
-            if (j != k || r >= c) entries.emplace_back(6 * k + r, 6 * j + c, 1.0);
-      }
-    pattern.resize(6 * N, 6 * N);
-    pattern.setFromTriplets(entries.begin(), entries.end());
-    pattern.makeCompressed();
-    slots.assign(block_cols.size(), {});
-    for (int j = 0; j < N; ++j)
-      for (int b = block_offsets[j]; b < block_offsets[j + 1]; ++b) {
-        const int k = block_cols[b];
-        for (int r = 0; r < 6; ++r)
-          for (int c = 0; c < 6; ++c) {
-            int slot = -1;
-            if (j != k || r >= c) {
-              const int col = 6 * j + c, row = 6 * k + r;
-              const int* begin = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col];
-              const int* end = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col + 1];
-              slot = static_cast<int>(std::lower_bound(begin, end, row) - pattern.innerIndexPtr());
-            }
-            slots[b][r * 6 + c] = slot;  // (row in k's block, col in j's block)
-          }
-      }
+    analysed = BlockCholesky(N, 6, block_offsets, block_cols);
+  }
+
+  std::unique_ptr<BlockCholesky> take_solver() const {
+    const std::lock_guard<std::mutex> lock(spare_mutex);
+    if (spare.empty()) return std::make_unique<BlockCholesky>(analysed);
+    std::unique_ptr<BlockCholesky> solver = std::move(spare.back());
+    spare.pop_back();
+    return solver;
+  }
+  void give_back(std::unique_ptr<BlockCholesky> solver) const {
+    const std::lock_guard<std::mutex> lock(spare_mutex);
+    spare.push_back(std::move(solver));
   }
 
   // Adds the Gauss-Newton terms of e(X)ᵀ M e(X), e = Σ_s X_{node_s} q_s + e_const, at the
@@ -209,9 +196,7 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
   const double spacing2 = std::pow(options.node_spacing * h, 2);
   for (NodeMap& x : X) x.leftCols<3>() = nearest_rotation(x.leftCols<3>());
   TriangleBvh tree = bvh;
-  Eigen::SparseMatrix<double> K = pattern;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> solver;
-  solver.analyzePattern(K);
+  std::unique_ptr<BlockCholesky> solver = take_solver();
   std::vector<Block> blocks(num_blocks);
   Eigen::VectorXd rhs(6 * N);
   std::vector<Match> forward(samples.size()), backward(raw.samples.size());
@@ -235,9 +220,9 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
       tbb::parallel_for(size_t(0), samples.size(), [&](size_t s) {
         Match& m = forward[s];
         const int v = samples[s];
-        const SurfacePoint p = raw.reference->bvh().closest(V.row(v).transpose(), max_dist * max_dist);
-        m.kept = p.triangle >= 0 &&
-                 vn.row(v).dot(raw.triangle_normals.row(p.triangle)) >= cos_max;
+        const SurfacePoint p =
+            raw.reference->bvh().closest(V.row(v).transpose(), max_dist * max_dist);
+        m.kept = p.triangle >= 0 && vn.row(v).dot(raw.triangle_normals.row(p.triangle)) >= cos_max;
         if (!m.kept) return;
         m.triangle = v;
         m.target = p.point;
@@ -326,18 +311,12 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
         for (int c = 0; c < 3; ++c) B(c, c) += damping;
         for (int c = 3; c < 6; ++c) B(c, c) += damping / spacing2;
       }
-      double* values = K.valuePtr();
-      for (int b = 0; b < num_blocks; ++b)
-        for (int r = 0; r < 6; ++r)
-          for (int c = 0; c < 6; ++c) {
-            const int slot = slots[b][r * 6 + c];
-            if (slot >= 0) values[slot] = blocks[b](c, r);
-          }
-      solver.factorize(K);
-      if (solver.info() != Eigen::Success)
+      static_assert(sizeof(Block) == 36 * sizeof(double), "blocks must be contiguous");
+      if (!solver->factorize(blocks.data()->data()))
         throw SolverError("deformation graph: the Gauss-Newton system is not definite");
-      const Eigen::VectorXd x = solver.solve(rhs);
-      if (!x.allFinite()) throw SolverError("deformation graph: the Gauss-Newton step is not finite");
+      const Eigen::VectorXd x = solver->solve(rhs);
+      if (!x.allFinite())
+        throw SolverError("deformation graph: the Gauss-Newton step is not finite");
       double move = 0.0;
       for (int j = 0; j < N; ++j) {
         const Vec3 w = x.segment<3>(6 * j), dt = x.segment<3>(6 * j + 3);
@@ -350,13 +329,14 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
       if (move < 0.01 * h) break;
     }
   }
+  give_back(std::move(solver));
   result.V = graph.deform(X);
   result.X = std::move(X);
   return result;
 }
 
-GraphFit::GraphFit(const TriMesh& templ, const DeformationGraph& graph,
-                   const TrackOptions& options, double mean_edge)
+GraphFit::GraphFit(const TriMesh& templ, const DeformationGraph& graph, const TrackOptions& options,
+                   double mean_edge)
     : impl_(std::make_unique<Impl>(templ, graph, options, mean_edge)) {}
 GraphFit::~GraphFit() = default;
 GraphFit::GraphFit(GraphFit&&) noexcept = default;

@@ -7,8 +7,8 @@
 ///        + λ Σ_(j,k) ‖R_j (g_k − g_j) + g_j + t_j − g_k − t_k‖² / s²  (graph, both directions)
 ///
 /// over rigid node maps X_j = [R_j | t_j], each step (ω_j, δt_j) per node (6 N unknowns, R_j ←
-/// R_j exp([ω_j]×)), Levenberg-Marquardt damped, solved by sparse Cholesky (LDLᵀ) on a block
-/// pattern fixed for the template; coarse to fine: λ from `regularizer` down to
+/// R_j exp([ω_j]×)), Levenberg-Marquardt damped, solved by supernodal Cholesky (BlockCholesky) on a
+/// block pattern fixed for the template; coarse to fine: λ from `regularizer` down to
 /// `regularizer_final`, σ halving. Data weights are per node (N / samples), lengths in units of
 /// the template's mean edge length h.
 #include <memory>
@@ -24,9 +24,9 @@ namespace sm {
 /// A raw frame prepared for fitting: welded mesh, BVH, normals, sample vertices.
 struct RawFrame {
   std::shared_ptr<const Reference> reference;  ///< N of the refinement: mesh, BVH, topology
-  Positions triangle_normals;   ///< m×3
-  Positions vertex_normals;     ///< n×3
-  std::vector<int> samples;     ///< vertices in a triangle, at most `samples` of them
+  Positions triangle_normals;                  ///< m×3
+  Positions vertex_normals;                    ///< n×3
+  std::vector<int> samples;  ///< vertices in a triangle, at most `samples` of them
   double mean_edge = 0.0;
 };
 
@@ -35,13 +35,13 @@ RawFrame prepare_raw_frame(TriMesh mesh, int max_samples);
 
 /// One fit's schedule: where it starts and how wide it searches.
 struct FitSchedule {
-  double scale = 1.0;  ///< σ and pruning distance times this (recovery widens the search)
+  double scale = 1.0;   ///< σ and pruning distance times this (recovery widens the search)
   int first_stage = 0;  ///< skip the coarsest stages (0: all)
 };
 
 struct FitResult {
   std::vector<NodeMap> X;
-  Positions V;          ///< the deformed template (n×3)
+  Positions V;  ///< the deformed template (n×3)
   int iterations = 0;
   int correspondences = 0;  ///< kept in the last iteration, both directions
 };
