@@ -134,7 +134,9 @@ constexpr const char* kMassage = R"(
 
 The optimizer (paper §2): per outer iteration, closest points both ways, the combined solve
 K v = μδ + (1−μ)c with K = μA + (1−μ)B (eq. 7), then Lawson's update of the distance weights
-(eq. 5). The keys are the same for every job; the smooth job's defaults differ.
+(eq. 5). The keys are the same for every job; the smooth job's defaults differ, and the track
+job's refinement runs without Lawson's update (its mean distance to the raw frame is what
+counts there; see [tracking](tracking.md)).
 
 )";
 
@@ -154,8 +156,9 @@ std::string config_reference() {
   out << kTrack;
   table(out, "", {"default"}, {entries_of(track)}, {"massage"});
   out << kMassage;
-  table(out, "massage", {"default (sequence, remesh, crossparam)", "default (smooth)"},
-        {entries_of(massage), entries_of(smooth)}, {});
+  table(out, "massage",
+        {"default (sequence, remesh, crossparam)", "default (smooth)", "default (track)"},
+        {entries_of(massage), entries_of(smooth), entries_of(track.massage)}, {});
   return out.str();
 }
 

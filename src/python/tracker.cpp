@@ -37,7 +37,7 @@ class PyTracker {
   PyTracker(const py::handle& template_vertices, const py::handle& triangles,
             const py::kwargs& kwargs) {
     py::dict keys = kwargs.attr("copy")().cast<py::dict>();
-    MassageOptions massage;
+    MassageOptions massage = refinement_massage_options();
     if (keys.contains("massage")) {
       read_options(to_json(keys.attr("pop")("massage"), "massage"), massage, fs::current_path(),
                    "massage");

@@ -45,6 +45,7 @@ BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<i
     if (!diagonal)
       throw InputError("BlockCholesky: diagonal block " + std::to_string(j) + " is missing");
   }
+  if (n == 0) return;  // nothing to factorize: no supernodes, solve() returns an empty vector
   old_of_ = amd_order(n, offsets, cols);
   std::vector<int> new_of(n);
   for (int a = 0; a < n; ++a) new_of[old_of_[a]] = a;

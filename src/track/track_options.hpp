@@ -4,6 +4,7 @@
 /// lengths of the template, angles in degrees. The config's "track" object maps onto it.
 #include "core/enum_names.hpp"
 #include "core/options_table.hpp"
+#include "massage/massage_options.hpp"
 
 namespace sm {
 
@@ -104,6 +105,17 @@ inline const Fields<TrackOptions>& fields_of<TrackOptions>() {
                                "the recovery's σ and pruning distance, times the first stage's"),
   };
   return fields;
+}
+
+/// The refinement's Mesh Massage options by default (track job, Python Tracker): the massage
+/// defaults without Lawson's reweighting. Lawson's weights approximate the Hausdorff distance, so
+/// the refinement evens the distances out instead of lowering them: on the untracked dancer
+/// (9 frames) the tracked → raw mean is 0.114 edges with them and 0.021 without, and on the
+/// remeshed samba the error against the truth 0.350 with them and 0.325 without.
+inline MassageOptions refinement_massage_options() {
+  MassageOptions o;
+  o.lawson = false;
+  return o;
 }
 
 }  // namespace sm

@@ -56,7 +56,8 @@ class Tracker {
   /// `templ`: the template, welded (one vertex per surface point); its mean edge length is the
   /// unit of every length option. Throws InputError for a template without triangles, OptionError
   /// for out-of-range options (key "track.<member>" or "massage.<member>").
-  Tracker(TriMesh templ, TrackOptions options, MassageOptions massage = {});
+  Tracker(TriMesh templ, TrackOptions options,
+          MassageOptions massage = refinement_massage_options());
   ~Tracker();
   Tracker(Tracker&&) noexcept;
 

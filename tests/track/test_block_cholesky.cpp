@@ -112,3 +112,11 @@ TEST_CASE("BlockCholesky refuses a pattern that is not an upper block triangle")
   CHECK_THROWS_AS(BlockCholesky(2, 6, {0, 1}, {0}), InputError);           // offsets too short
   CHECK_THROWS_AS(BlockCholesky(2, 6, {0, 2, 3}, {0, 2, 1}), InputError);  // column out of range
 }
+
+TEST_CASE("BlockCholesky of an empty matrix") {
+  BlockCholesky solver(0, 6, {0}, {});
+  CHECK(solver.size() == 0);
+  CHECK(solver.num_supernodes() == 0);
+  CHECK(solver.factorize(nullptr));
+  CHECK(solver.solve(Eigen::VectorXd()).size() == 0);
+}

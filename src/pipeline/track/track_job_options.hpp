@@ -69,7 +69,8 @@ struct TrackJobOptions {
   TrackTemplateOptions templ;
   OutputOptions output;
   TrackOptions track;
-  MassageOptions massage;  ///< the refinement toward each raw frame (track.refine_iterations)
+  /// The refinement toward each raw frame (iterations: track.refine_iterations).
+  MassageOptions massage = refinement_massage_options();
   int threads = 0;         ///< worker threads, 0 = one per core
   ShardOptions shard;      ///< this process's block of the selected frames (cluster job arrays)
   /// The file the options were read from (empty from code): an input the outputs must not
