@@ -11,26 +11,8 @@
 namespace sm {
 namespace {
 
-// The AMD order of the blocks: order[new] = old.
-std::vector<int> amd_order(int n, const std::vector<int>& offsets, const std::vector<int>& cols) {
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int j = 0; j < n; ++j)
-    for (int i = offsets[j]; i < offsets[j + 1]; ++i) entries.emplace_back(cols[i], j, 1.0);
-  Eigen::SparseMatrix<double> pattern(n, n);
-  pattern.setFromTriplets(entries.begin(), entries.end());
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
-  Eigen::AMDOrdering<int>()(pattern, perm);
-  std::vector<int> order(perm.indices().data(), perm.indices().data() + n);
-  return order;
-}
-
-}  // namespace
-
-BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<int>& offsets,
-                             const std::vector<int>& cols)
-    : n_(num_blocks), b_(block_size) {
-  const int n = n_;
-  if (n < 0 || b_ < 1 || offsets.size() != static_cast<size_t>(n) + 1 || offsets[0] != 0 ||
+void check_pattern(int n, int b, const std::vector<int>& offsets, const std::vector<int>& cols) {
+  if (n < 0 || b < 1 || offsets.size() != static_cast<size_t>(n) + 1 || offsets[0] != 0 ||
       offsets[n] != static_cast<int>(cols.size()))
     throw InputError("BlockCholesky: the pattern's offsets do not match " + std::to_string(n) +
                      " block rows");
@@ -45,42 +27,64 @@ BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<i
     if (!diagonal)
       throw InputError("BlockCholesky: diagonal block " + std::to_string(j) + " is missing");
   }
-  if (n == 0) return;  // nothing to factorize: no supernodes, solve() returns an empty vector
-  old_of_ = amd_order(n, offsets, cols);
-  std::vector<int> new_of(n);
-  for (int a = 0; a < n; ++a) new_of[old_of_[a]] = a;
+}
 
-  // Column structures of L (block rows below the diagonal) and the elimination tree: a
-  // column's structure is K's below it and its children's, less the column itself.
-  std::vector<std::vector<int>> below(n), structure(n), child_cols(n);
+// The AMD order of the blocks: order[new] = old.
+std::vector<int> amd_order(int n, const std::vector<int>& offsets, const std::vector<int>& cols) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < n; ++j)
+    for (int i = offsets[j]; i < offsets[j + 1]; ++i) entries.emplace_back(cols[i], j, 1.0);
+  Eigen::SparseMatrix<double> pattern(n, n);
+  pattern.setFromTriplets(entries.begin(), entries.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm;
+  Eigen::AMDOrdering<int>()(pattern, perm);
+  return std::vector<int>(perm.indices().data(), perm.indices().data() + n);
+}
+
+}  // namespace
+
+BlockCholesky::Symbolic BlockCholesky::symbolic(const std::vector<int>& offsets,
+                                                const std::vector<int>& cols,
+                                                const std::vector<int>& new_of) const {
+  // A column's structure (block rows below the diagonal in L) is K's below it and its
+  // children's in the elimination tree, less the column itself; its parent is its first row.
+  const int n = n_;
+  Symbolic sym;
+  sym.structure.assign(n, {});
+  sym.parent.assign(n, -1);
+  std::vector<std::vector<int>> below(n), children(n);
   for (int j = 0; j < n; ++j)
     for (int i = offsets[j]; i < offsets[j + 1]; ++i) {
       const int a = new_of[j], c = new_of[cols[i]];
       if (a != c) below[std::min(a, c)].push_back(std::max(a, c));
     }
-  std::vector<int> parent(n, -1), mark(n, -1);
+  std::vector<int> mark(n, -1);
   for (int col = 0; col < n; ++col) {
-    std::vector<int>& s = structure[col];
+    std::vector<int>& s = sym.structure[col];
     auto add = [&](int row) {
       if (row > col && mark[row] != col) mark[row] = col, s.push_back(row);
     };
     for (int row : below[col]) add(row);
-    for (int c : child_cols[col])
-      for (int row : structure[c]) add(row);
+    for (int c : children[col])
+      for (int row : sym.structure[c]) add(row);
     std::sort(s.begin(), s.end());
-    if (!s.empty()) parent[col] = s[0], child_cols[s[0]].push_back(col);
+    if (!s.empty()) sym.parent[col] = s[0], children[s[0]].push_back(col);
   }
+  return sym;
+}
 
-  // Supernodes: col joins the supernode that ends at col − 1 when col is that column's parent
-  // (then the supernode's rows below are col's, a superset of every member's). Besides the
-  // fundamental case (identical structures), small supernodes take a few explicit zeros, as
-  // CHOLMOD's relaxed amalgamation does: dense kernels on wider fronts beat exact sparsity.
+std::vector<int> BlockCholesky::form_supernodes(const Symbolic& sym) {
+  // col joins the supernode that ends at col − 1 when col is that column's parent (then the
+  // supernode's rows below are col's, a superset of every member's). Besides the fundamental
+  // case (identical structures), small supernodes take a few explicit zeros, as CHOLMOD's
+  // relaxed amalgamation does: dense kernels on wider fronts beat exact sparsity.
+  const int n = n_;
   std::vector<int> super_of(n);
   long exact = 0;  // the current supernode's block entries in the exact structure
   for (int col = 0; col < n; ++col) {
-    const long rows = static_cast<long>(structure[col].size());
+    const long rows = static_cast<long>(sym.structure[col].size());
     bool joins = false;
-    if (col > 0 && parent[col - 1] == col) {
+    if (col > 0 && sym.parent[col - 1] == col) {
       const long width = col - super_first_.back() + 1;  // with col
       const long stored = width * (width + 1) / 2 + width * rows;
       const double zeros = static_cast<double>(stored - exact - rows - 1) / stored;
@@ -97,29 +101,34 @@ BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<i
   children_.assign(S, {});
   for (int s = 0; s < S; ++s) {
     const int last = super_first_[s + 1] - 1;
-    rows_.insert(rows_.end(), structure[last].begin(), structure[last].end());
+    rows_.insert(rows_.end(), sym.structure[last].begin(), sym.structure[last].end());
     rows_offsets_.push_back(static_cast<int>(rows_.size()));
-    if (parent[last] >= 0) {
-      super_parent_[s] = super_of[parent[last]];
+    if (sym.parent[last] >= 0) {
+      super_parent_[s] = super_of[sym.parent[last]];
       children_[super_parent_[s]].push_back(s);
     }
   }
-  // A front lists its columns, then its rows below: the block position of a block index.
-  auto position = [&](int s, int index) {
-    if (index < super_first_[s + 1]) return index - super_first_[s];
-    const int* begin = rows_.data() + rows_offsets_[s];
-    const int* end = rows_.data() + rows_offsets_[s + 1];
-    return static_cast<int>(std::lower_bound(begin, end, index) - begin) +
-           (super_first_[s + 1] - super_first_[s]);
-  };
+  return super_of;
+}
+
+int BlockCholesky::position(int s, int index) const {
+  if (index < super_first_[s + 1]) return index - super_first_[s];
+  const int* begin = rows_.data() + rows_offsets_[s];
+  const int* end = rows_.data() + rows_offsets_[s + 1];
+  return static_cast<int>(std::lower_bound(begin, end, index) - begin) +
+         (super_first_[s + 1] - super_first_[s]);
+}
+
+void BlockCholesky::map_entries(const std::vector<int>& offsets, const std::vector<int>& cols,
+                                const std::vector<int>& new_of, const std::vector<int>& super_of) {
+  const int S = num_supernodes();
   extend_map_.assign(S, {});
   for (int s = 0; s < S; ++s)
     if (super_parent_[s] >= 0)
       for (int k = rows_offsets_[s]; k < rows_offsets_[s + 1]; ++k)
         extend_map_[s].push_back(position(super_parent_[s], rows_[k]));
-
   std::vector<std::vector<Entry>> per_super(S);
-  for (int j = 0; j < n; ++j)
+  for (int j = 0; j < n_; ++j)
     for (int i = offsets[j]; i < offsets[j + 1]; ++i) {
       const int a = new_of[j], c = new_of[cols[i]];
       const int col = std::min(a, c), row = std::max(a, c), s = super_of[col];
@@ -130,13 +139,17 @@ BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<i
     entries_.insert(entries_.end(), list.begin(), list.end());
     entry_offsets_.push_back(static_cast<int>(entries_.size()));
   }
+}
+
+void BlockCholesky::plan_stack() {
   // Postorder of the supernodal tree: a supernode's children are done just before it, so that
   // their updates sit on top of one stack (multifrontal), whose peak is computed here.
-  std::vector<int> visit;
+  const int S = num_supernodes();
+  std::vector<int> visit, next;  // the walk's path, and per level the next child to descend into
   for (int root = 0; root < S; ++root) {
     if (super_parent_[root] >= 0) continue;
-    visit.push_back(root);
-    std::vector<int> next(1, 0);  // per level of the walk: the next child to descend into
+    visit.assign(1, root);
+    next.assign(1, 0);
     while (!visit.empty()) {
       const int s = visit.back();
       if (next.back() < static_cast<int>(children_[s].size())) {
@@ -160,7 +173,20 @@ BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<i
     largest = std::max(largest, b_ * (super_first_[s + 1] - super_first_[s]) + below);
   }
   front_size_ = static_cast<int>(largest);
-  factor_.assign(S, {});
+}
+
+BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<int>& offsets,
+                             const std::vector<int>& cols)
+    : n_(num_blocks), b_(block_size) {
+  check_pattern(n_, b_, offsets, cols);
+  if (n_ == 0) return;  // nothing to factorize: no supernodes, solve() returns an empty vector
+  old_of_ = amd_order(n_, offsets, cols);
+  std::vector<int> new_of(n_);
+  for (int a = 0; a < n_; ++a) new_of[old_of_[a]] = a;
+  const std::vector<int> super_of = form_supernodes(symbolic(offsets, cols, new_of));
+  map_entries(offsets, cols, new_of, super_of);
+  plan_stack();
+  factor_.assign(num_supernodes(), {});
 }
 
 bool BlockCholesky::factorize(const double* values) {

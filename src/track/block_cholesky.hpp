@@ -39,6 +39,19 @@ class BlockCholesky {
   int num_supernodes() const { return static_cast<int>(super_first_.size()) - 1; }
 
  private:
+  // The analysis, step by step (in the elimination order).
+  struct Symbolic {
+    std::vector<std::vector<int>> structure;  // per column: its block rows below the diagonal
+    std::vector<int> parent;                  // elimination tree, −1 at a root
+  };
+  Symbolic symbolic(const std::vector<int>& offsets, const std::vector<int>& cols,
+                    const std::vector<int>& new_of) const;
+  std::vector<int> form_supernodes(const Symbolic& sym);  // returns each column's supernode
+  int position(int s, int index) const;  // block position of a block index in s's front
+  void map_entries(const std::vector<int>& offsets, const std::vector<int>& cols,
+                   const std::vector<int>& new_of, const std::vector<int>& super_of);
+  void plan_stack();
+
   int n_ = 0, b_ = 0;
   std::vector<int> old_of_;           // block in the elimination order → block of K
   std::vector<int> super_first_{0};   // supernode s: block columns [first[s], first[s + 1])
