@@ -163,16 +163,18 @@ void BlockCholesky::plan_stack() {
     }
   }
   std::vector<long> sizes;  // the stack's updates while factorizing
-  long top = 0, largest = 0;
+  long top = 0;
+  int largest = 0;
   for (int s : order_) {
     for (size_t c = 0; c < children_[s].size(); ++c) top -= sizes.back(), sizes.pop_back();
-    const long below = static_cast<long>(b_) * (rows_offsets_[s + 1] - rows_offsets_[s]);
+    const auto [k, m] = front_shape(s);
+    const long below = m - k;
     sizes.push_back(below * below);
     top += below * below;
     stack_peak_ = std::max(stack_peak_, top);
-    largest = std::max(largest, b_ * (super_first_[s + 1] - super_first_[s]) + below);
+    largest = std::max(largest, m);
   }
-  front_size_ = static_cast<int>(largest);
+  front_size_ = largest;
 }
 
 BlockCholesky::BlockCholesky(int num_blocks, int block_size, const std::vector<int>& offsets,
@@ -195,8 +197,7 @@ bool BlockCholesky::factorize(const double* values) {
   stack_.resize(stack_peak_);
   long top = 0;  // the stack holds each finished child's update, r×r column-major
   for (int s : order_) {
-    const int k = b * (super_first_[s + 1] - super_first_[s]);
-    const int m = k + b * (rows_offsets_[s + 1] - rows_offsets_[s]);
+    const auto [k, m] = front_shape(s);
     auto front = front_.topLeftCorner(m, m);
     front.triangularView<Eigen::Lower>().setZero();
     for (int e = entry_offsets_[s]; e < entry_offsets_[s + 1]; ++e) {
@@ -270,9 +271,8 @@ Eigen::VectorXd BlockCholesky::solve(const Eigen::VectorXd& rhs) const {
 long BlockCholesky::factor_nonzeros() const {
   long count = 0;
   for (int s = 0; s < num_supernodes(); ++s) {
-    const long k = b_ * (super_first_[s + 1] - super_first_[s]);
-    const long m = k + b_ * (rows_offsets_[s + 1] - rows_offsets_[s]);
-    count += k * (k + 1) / 2 + (m - k) * k;
+    const auto [k, m] = front_shape(s);
+    count += static_cast<long>(k) * (k + 1) / 2 + static_cast<long>(m - k) * k;
   }
   return count;
 }

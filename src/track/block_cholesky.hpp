@@ -2,11 +2,12 @@
 /// Supernodal (multifrontal) Cholesky factorization P K Pᵀ = L Lᵀ of a symmetric positive
 /// definite matrix K made of dense b×b blocks over a fixed block pattern, for systems that are
 /// factorized again and again with new values (the deformation graph's Gauss-Newton steps):
-/// the pattern is analysed once (AMD ordering of the blocks, elimination tree, fundamental
+/// the pattern is analysed once (AMD ordering of the blocks, elimination tree, relaxed
 /// supernodes), every factorization then runs on dense fronts with Eigen's blocked kernels.
 /// A simplicial factorization (Eigen::SimplicialLDLT) spends most of its time in scalar
 /// indexing: on the graph fit's 4584×4584 system with 1.06M non-zeros in L it reached about
 /// 2 GFLOP/s. Deterministic: one thread, a fixed order of operations.
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -48,6 +49,11 @@ class BlockCholesky {
                     const std::vector<int>& new_of) const;
   std::vector<int> form_supernodes(const Symbolic& sym);  // returns each column's supernode
   int position(int s, int index) const;  // block position of a block index in s's front
+  // Supernode s's front: its k = b·columns and its size m = k + b·(rows below).
+  std::pair<int, int> front_shape(int s) const {
+    const int k = b_ * (super_first_[s + 1] - super_first_[s]);
+    return {k, k + b_ * (rows_offsets_[s + 1] - rows_offsets_[s])};
+  }
   void map_entries(const std::vector<int>& offsets, const std::vector<int>& cols,
                    const std::vector<int>& new_of, const std::vector<int>& super_of);
   void plan_stack();
