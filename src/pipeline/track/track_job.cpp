@@ -398,7 +398,7 @@ std::string format_track_summary_csv(const std::vector<TrackRow>& rows) {
   CsvWriter csv({"frame", "file", "status", "recovery", "to_raw_mean", "to_raw_p99", "to_raw_max",
                  "from_raw_mean", "from_raw_p99", "from_raw_max", "folded", "shear_mean",
                  "shear_max", "registration_to_raw_mean", "registration_from_raw_mean",
-                 "registration_from_raw_p99", "raw_vertices", "raw_triangles", "iterations",
+                 "registration_from_raw_p99", "registration_folded", "raw_vertices", "raw_triangles", "iterations",
                  "seconds_register", "seconds_refine", "beyond"});
   for (const TrackRow& r : rows) {
     csv.cell(r.frame).cell(r.file).cell(name_of(r.status, kTrackStatusNames)).cell(r.recovery);
@@ -406,7 +406,7 @@ std::string format_track_summary_csv(const std::vector<TrackRow>& rows) {
     csv.cell(r.fit.from_raw_mean).cell(r.fit.from_raw_p99).cell(r.fit.from_raw_max);
     csv.cell(r.fit.folded).cell(r.fit.shear_mean).cell(r.fit.shear_max);
     csv.cell(r.registration_fit.to_raw_mean).cell(r.registration_fit.from_raw_mean);
-    csv.cell(r.registration_fit.from_raw_p99);
+    csv.cell(r.registration_fit.from_raw_p99).cell(r.registration_fit.folded);
     csv.cell(r.raw_vertices).cell(r.raw_triangles).cell(r.iterations);
     csv.cell(r.seconds_register).cell(r.seconds_refine).cell(r.beyond);
     csv.end_row();

@@ -9,6 +9,7 @@
 #include "pipeline/cluster/frame_record.hpp"
 #include "pipeline/cluster/merge.hpp"
 #include "pipeline/cluster/output_lock.hpp"
+#include "pipeline/outputs/frame_output.hpp"
 
 namespace sm {
 namespace fs = std::filesystem;
