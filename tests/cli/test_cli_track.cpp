@@ -53,12 +53,15 @@ TEST_CASE("seqmassage runs a track config: frames, summary, exit 0; a lost frame
 
   write_frames(dir / "glitched", true);
   write_file_atomic(dir / "glitched.json", R"({ "job": "track", "input": { "frames": "glitched" },
-    "output": { "dir": "out_glitched", "html": false } })");
+    "output": { "dir": "out_glitched", "html": true } })");
   const test::CliRun lost = test::run_cli(dir.path(), "glitched.json");
   CHECK(lost.code == 5);
   CHECK_THAT(lost.err, Contains("frame 2 (f_2.obj) lost: "));
   CHECK_THAT(lost.err, Contains("1 of 5 frames lost (written as their best attempt"));
   CHECK(fs::exists(dir / "out_glitched/frames/f_2.obj"));
+  CHECK_THAT(lost.out, Contains("results: out_glitched/ (frames/, report_data/, report.html, "
+                                "summary.csv, report.json)"));
+  CHECK(fs::exists(dir / "out_glitched/report.html"));
 }
 
 TEST_CASE("seqmassage tracks shards of a track config and merges them, naming the seams") {
