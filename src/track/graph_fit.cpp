@@ -5,6 +5,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 #include "core/errors.hpp"
@@ -58,6 +59,15 @@ struct Match {
   Vec3 normal = Vec3::Zero();
   double dist = 0.0;
 };
+
+// The mean distance of the kept correspondences (infinity if none is kept).
+double mean_kept_distance(const std::vector<Match>& matches) {
+  double sum = 0.0;
+  int kept = 0;
+  for (const Match& m : matches)
+    if (m.kept) sum += m.dist, ++kept;
+  return kept > 0 ? sum / kept : std::numeric_limits<double>::infinity();
+}
 
 }  // namespace
 
@@ -204,14 +214,26 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
 
   const double sigma_start = options.robust_scale * h * schedule.scale;
   const int stages = options.stages;
+  // The fit's budget is `iterations` per stage; the last stage takes what the earlier ones left.
+  // With `small_motion`, a frame whose first correspondences lie that close is near its fit
+  // already, and its coarse stages take one iteration each: on captures, coarse stages run to
+  // their share (strong graph term, wide σ) slide such a fit along the surface, and the last
+  // stage does not win that back. On smooth generated surfaces the coarse stages are what
+  // carries tangential motion, so it is off by default (docs/tracking.md, "The schedule").
+  const int budget = stages * options.iterations;
+  int used = 0;
+  bool first = true, small = false;
   for (int stage = std::min(schedule.first_stage, stages - 1); stage < stages; ++stage) {
+    const bool last = stage == stages - 1;
     const double f = stages > 1 ? static_cast<double>(stage) / (stages - 1) : 1.0;
     const double lambda =
         options.regularizer * std::pow(options.regularizer_final / options.regularizer, f);
     const double sigma =
         std::max(options.robust_scale_final * h, sigma_start * std::pow(0.5, stage));
     const double max_dist = options.max_distance * sigma;
-    for (int it = 0; it < options.iterations; ++it) {
+    const int share = last ? budget - used : options.iterations;
+    for (int it = 0; it < (small && !last ? 1 : share); ++it) {
+      ++used;
       const Positions V = graph.deform(X);
       tree.refit(V);
       const TriMesh deformed{V, templ.F};
@@ -243,6 +265,10 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
         m.dist = std::sqrt(p.dist2);
       });
 
+      if (first) {
+        first = false;
+        small = mean_kept_distance(forward) < options.small_motion * h;
+      }
       for (Block& B : blocks) B.setZero();
       rhs.setZero();
       const double per_node = static_cast<double>(N) / (samples.size() + raw.samples.size());

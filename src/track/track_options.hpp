@@ -24,6 +24,7 @@ struct TrackOptions {
   int node_influences = 6;    ///< "node_influences": nodes blended at a vertex, at most
   int stages = 3;             ///< "stages": coarse-to-fine stages of the fit
   int iterations = 8;         ///< "iterations": ICP iterations per stage, at most
+  double small_motion = 0.0;  ///< "small_motion": near already: short coarse stages
   double regularizer = 0.3;   ///< "regularizer": the graph term's weight in the first stage
   double regularizer_final = 0.001;  ///< "regularizer_final": its weight in the last stage
   double point_weight = 0.1;        ///< "point_weight": point-to-point part beside point-to-plane
@@ -58,7 +59,13 @@ inline const Fields<TrackOptions>& fields_of<TrackOptions>() {
                         "goes from `regularizer` to `regularizer_final`, σ halves"),
       field<&O::iterations>("iterations", at_least(1),
                             "ICP iterations (closest points both ways, one Gauss-Newton solve) "
-                            "per stage, at most"),
+                            "per stage, at most; the last stage also takes what the earlier "
+                            "stages left of their share"),
+      field<&O::small_motion>("small_motion", at_least(0),
+                              "when a frame's first correspondences lie closer than this on "
+                              "average (mean edge lengths), its coarse stages take one "
+                              "iteration each and the last stage the rest; 0: never "
+                              "(docs/tracking.md: 0.75 on captures)"),
       field<&O::regularizer>("regularizer", above(0),
                              "weight of the graph's as-rigid-as-possible term in the first stage"),
       field<&O::regularizer_final>("regularizer_final", above(0),
