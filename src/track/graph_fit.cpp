@@ -214,16 +214,18 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
 
   const double sigma_start = options.robust_scale * h * schedule.scale;
   const int stages = options.stages;
-  // The fit's budget is `iterations` per stage; the last stage takes what the earlier ones left.
+  // The fit's budget is `iterations` per stage run; the last stage takes what the earlier ones
+  // left.
   // With `small_motion`, a frame whose first correspondences lie that close is near its fit
   // already, and its coarse stages take one iteration each: on captures, coarse stages run to
   // their share (strong graph term, wide σ) slide such a fit along the surface, and the last
   // stage does not win that back. On smooth generated surfaces the coarse stages are what
   // carries tangential motion, so it is off by default (docs/tracking.md, "The schedule").
-  const int budget = stages * options.iterations;
+  const int first_stage = std::min(schedule.first_stage, stages - 1);
+  const int budget = (stages - first_stage) * options.iterations;
   int used = 0;
   bool first = true, small = false;
-  for (int stage = std::min(schedule.first_stage, stages - 1); stage < stages; ++stage) {
+  for (int stage = first_stage; stage < stages; ++stage) {
     const bool last = stage == stages - 1;
     const double f = stages > 1 ? static_cast<double>(stage) / (stages - 1) : 1.0;
     const double lambda =
