@@ -398,8 +398,8 @@ std::string format_track_summary_csv(const std::vector<TrackRow>& rows) {
   CsvWriter csv({"frame", "file", "status", "recovery", "to_raw_mean", "to_raw_p99", "to_raw_max",
                  "from_raw_mean", "from_raw_p99", "from_raw_max", "folded", "shear_mean",
                  "shear_max", "registration_to_raw_mean", "registration_from_raw_mean",
-                 "registration_from_raw_p99", "registration_folded", "raw_vertices", "raw_triangles", "iterations",
-                 "seconds_register", "seconds_refine", "beyond"});
+                 "registration_from_raw_p99", "registration_folded", "raw_vertices",
+                 "raw_triangles", "iterations", "seconds_register", "seconds_refine", "beyond"});
   for (const TrackRow& r : rows) {
     csv.cell(r.frame).cell(r.file).cell(name_of(r.status, kTrackStatusNames)).cell(r.recovery);
     csv.cell(r.fit.to_raw_mean).cell(r.fit.to_raw_p99).cell(r.fit.to_raw_max);
