@@ -154,6 +154,20 @@ TEST_CASE("a glitched frame is lost, a jump is recovered, tracking goes on", "[t
   CHECK(c.status[10] == TrackStatus::Ok);
 }
 
+TEST_CASE("track.small_motion shortens the coarse stages of frames near their fit", "[track]") {
+  // The limb's motion is mostly along its smooth surface, so every frame starts within 0.75
+  // edges of it: the coarse stages get one iteration each, and the error grows, which is why
+  // the key is off by default (docs/tracking.md, "The schedule").
+  const CaseFigures plain = run_case(bending_limb(1.0, 0.03), 6, 0.25, 5);
+  TrackOptions options;
+  options.small_motion = 0.75;
+  const CaseFigures short_coarse = run_case(bending_limb(1.0, 0.03), 6, 0.25, 5, options);
+  print("limb, small_motion 0.75", short_coarse);
+  CHECK(short_coarse.to_raw_mean < 0.06);
+  CHECK(short_coarse.error_mean > plain.error_mean);
+  for (TrackStatus s : short_coarse.status) CHECK(s != TrackStatus::Lost);
+}
+
 // Not a test: per-frame figures for tuning (TRACK_CASE, TRACK_FRAMES, T_* environment variables).
 TEST_CASE("tracker tuning", "[.tune]") {
   const char* which = std::getenv("TRACK_CASE");
@@ -210,18 +224,4 @@ TEST_CASE("tracker tuning", "[.tune]") {
                 truth_error(f.V, templ.params, s, k, h), f.iterations, f.registration_fit.to_raw_mean,
                 f.registration_fit.from_raw_mean, f.fit.to_raw_mean, f.fit.from_raw_mean, f.fit.folded, int(f.status), f.recovery.c_str());
   }
-}
-
-TEST_CASE("track.small_motion shortens the coarse stages of frames near their fit", "[track]") {
-  // The limb's motion is mostly along its smooth surface, so every frame starts within 0.75
-  // edges of it: the coarse stages get one iteration each, and the error grows, which is why
-  // the key is off by default (docs/tracking.md, "The schedule").
-  const CaseFigures plain = run_case(bending_limb(1.0, 0.03), 6, 0.25, 5);
-  TrackOptions options;
-  options.small_motion = 0.75;
-  const CaseFigures short_coarse = run_case(bending_limb(1.0, 0.03), 6, 0.25, 5, options);
-  print("limb, small_motion 0.75", short_coarse);
-  CHECK(short_coarse.to_raw_mean < 0.06);
-  CHECK(short_coarse.error_mean > plain.error_mean);
-  for (TrackStatus s : short_coarse.status) CHECK(s != TrackStatus::Lost);
 }
