@@ -319,13 +319,7 @@ int run_track(const Args& args, sm::TrackJobOptions config) {
     std::cerr << "seqmassage: tracked " << result.frames.size() << " frames (" << result.lost
               << " lost, " << result.recovered << " recovered) in " << std::lround(result.seconds)
               << " s\n";
-    std::vector<std::string> names, tables;
-    for (const auto& output : plan.outputs.outputs) {
-      const sm::ResultNames r = output->results();
-      names.insert(names.end(), r.before_records.begin(), r.before_records.end());
-      tables.insert(tables.end(), r.after_records.begin(), r.after_records.end());
-    }
-    names.insert(names.end(), tables.begin(), tables.end());
+    std::vector<std::string> names = sm::result_names(plan.outputs.outputs, {});
     names.push_back(sm::summary_file_name(plan.config.shard));
     names.push_back(sm::report_file_name(plan.config.shard));
     print_results(out, names);

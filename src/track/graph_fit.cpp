@@ -215,8 +215,7 @@ FitResult GraphFit::Impl::fit(const RawFrame& raw, std::vector<NodeMap> X,
   const double sigma_start = options.robust_scale * h * schedule.scale;
   const int stages = options.stages;
   // The fit's budget is `iterations` per stage run; the last stage takes what the earlier ones
-  // left.
-  // With `small_motion`, a frame whose first correspondences lie that close is near its fit
+  // left. With `small_motion`, a frame whose first correspondences lie that close is near its fit
   // already, and its coarse stages take one iteration each: on captures, coarse stages run to
   // their share (strong graph term, wide σ) slide such a fit along the surface, and the last
   // stage does not win that back. On smooth generated surfaces the coarse stages are what

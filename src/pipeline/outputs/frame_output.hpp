@@ -200,4 +200,9 @@ std::vector<std::string> record_row_keys();
 /// The outputs part of `seqmassage --help`: every registered output's lines, in order.
 std::string outputs_help();
 
+/// The results line's names of `outputs`: their folders, then `middle` (the sequence job's
+/// records/), then their whole-run files.
+std::vector<std::string> result_names(const std::vector<std::shared_ptr<FrameOutput>>& outputs,
+                                      const std::vector<std::string>& middle);
+
 }  // namespace sm

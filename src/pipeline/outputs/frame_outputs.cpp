@@ -54,6 +54,19 @@ void FrameOutput::add_record_rows(RecordRows& rows, const OutputFrame& part) con
   if (record_key_) rows[record_key_] += part.record_rows;
 }
 
+std::vector<std::string> result_names(const std::vector<std::shared_ptr<FrameOutput>>& outputs,
+                                      const std::vector<std::string>& middle) {
+  std::vector<std::string> names, tables;
+  for (const auto& output : outputs) {
+    ResultNames r = output->results();
+    names.insert(names.end(), r.before_records.begin(), r.before_records.end());
+    tables.insert(tables.end(), r.after_records.begin(), r.after_records.end());
+  }
+  names.insert(names.end(), middle.begin(), middle.end());
+  names.insert(names.end(), tables.begin(), tables.end());
+  return names;
+}
+
 std::string outputs_help() {
   std::string text;
   for (const OutputEntry& entry : output_registry()) text += entry.help();

@@ -38,14 +38,7 @@ ReportHeader report_header(const SequencePlan& plan) {
 
 std::vector<std::string> run_output_names(const SequencePlan& plan) {
   const SequenceJobOptions& c = plan.config;
-  std::vector<std::string> names, tables;
-  for (const auto& output : plan.outputs) {
-    ResultNames r = output->results();
-    names.insert(names.end(), r.before_records.begin(), r.before_records.end());
-    tables.insert(tables.end(), r.after_records.begin(), r.after_records.end());
-  }
-  names.push_back("records/");
-  names.insert(names.end(), tables.begin(), tables.end());
+  std::vector<std::string> names = result_names(plan.outputs, {"records/"});
   names.push_back(summary_file_name(c.shard));
   names.push_back(report_file_name(c.shard));
   return names;
